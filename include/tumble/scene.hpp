@@ -1,0 +1,111 @@
+#pragma once
+/// A Scene is the parsed, validated, immutable description of one run: what the scene file says,
+/// with every default made explicit. What a scene leaves out is not modelled (no floor: no
+/// collision work; zero drag: no drag computed). Units are SI; angles are radians inside.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tumble/error.hpp"
+#include "tumble/integrators.hpp"
+#include "tumble/math.hpp"
+
+namespace tumble {
+
+enum class Shape { Box, Particle, Mesh };
+std::string_view to_string(Shape shape);
+
+/// An sRGB colour, 8 bits per channel, as written "#rrggbb" in a scene.
+struct Color {
+  std::uint8_t r = 0, g = 0, b = 0;
+  bool operator==(const Color&) const = default;
+};
+std::string to_string(Color c);  ///< "#rrggbb"
+
+struct SimulationSettings {
+  double duration_s = 4.0;
+  double dt_s = 0.001;  ///< fixed physics step, independent of fps
+  Integrator integrator = Integrator::Rk4;
+  RotationRep rotation = RotationRep::Quaternion;
+  Vec3 gravity{0.0, -9.81, 0.0};
+  double linear_drag = 0.0;   ///< N·s/m; 0 = not modelled
+  double angular_drag = 0.0;  ///< N·m·s; 0 = not modelled
+};
+
+/// The plane y = height. Present only when the scene has a [floor] table.
+struct FloorSettings {
+  double height = 0.0;
+  double restitution = 0.5;  ///< default for bodies that set none, in [0, 1]
+  double friction = 0.0;     ///< Coulomb mu >= 0; 0 = frictionless
+};
+
+struct RenderSettings {
+  int fps = 60;
+  int width = 1280;
+  int height = 720;
+  int msaa = 4;
+  Color background{0xdf, 0xe6, 0xee};
+};
+
+struct CameraSettings {
+  Vec3 position{5.0, 3.0, 6.0};
+  Vec3 target{0.0, 0.5, 0.0};
+  Vec3 up{0.0, 1.0, 0.0};
+  double fov_deg = 45.0;
+  std::optional<std::string> follow;  ///< name of a body to keep in view
+};
+
+struct LightSettings {
+  Vec3 direction{-0.4, -1.0, -0.3};
+  bool shadows = true;
+};
+
+struct BodySpec {
+  std::string name;
+  Shape shape = Shape::Box;
+  Vec3 size{1.0, 1.0, 1.0};  ///< box: full edge lengths; particle: drawn size only
+  std::string mesh;          ///< shape = mesh: path as resolved against the scene's folder
+  double scale = 1.0;
+  std::optional<double> mass;     ///< kg; exactly one of mass and density is set
+  std::optional<double> density;  ///< kg/m^3
+  Vec3 position = Vec3::Zero();   ///< centre of mass, m
+  Quat orientation = Quat::Identity();
+  Vec3 velocity = Vec3::Zero();          ///< m/s
+  Vec3 angular_velocity = Vec3::Zero();  ///< rad/s, world frame
+  std::optional<double> restitution;     ///< overrides the floor's
+  Color color;
+  SourceLocation where;  ///< the [[body]] header, for errors found after parsing
+};
+
+struct Scene {
+  std::string source_name;  ///< file path as given, or "<default>" for the built-in scene
+  std::string source_text;  ///< the exact bytes parsed (hashed into run.json)
+  std::string stem;         ///< file stem, "default" for the built-in scene: out/<stem>/
+  SimulationSettings simulation;
+  std::optional<FloorSettings> floor;
+  RenderSettings render;
+  CameraSettings camera;
+  LightSettings light;
+  std::vector<BodySpec> bodies;
+};
+
+/// Parses and validates scene text. `source_name` is used in error locations and to resolve
+/// mesh paths. Throws tumble::Error (BadInput) with file:line:column on any problem.
+Scene parse_scene(std::string_view text, const std::string& source_name);
+
+/// Reads and parses a scene file. A file that cannot be read is BadInput (exit 2).
+Scene load_scene_file(const std::filesystem::path& path);
+
+/// The seed's experiment: a box dropped with a tilt and a spin onto a floor.
+Scene default_scene();
+
+/// The closest of `candidates` to `word` when it is close enough to be a likely typo.
+std::optional<std::string> closest_match(std::string_view word,
+                                         const std::vector<std::string_view>& candidates);
+
+}  // namespace tumble
