@@ -1,0 +1,78 @@
+#pragma once
+/// A rigid body in the Baraff–Witkin formulation: constant mass properties in the body frame
+/// (principal axes through the centre of mass, so the body inertia tensor is diagonal) and a state
+/// Y = (x, q or R, P, L). Velocities are derived: v = P/m, I⁻¹ = R I_body⁻¹ Rᵀ, ω = I⁻¹ L.
+/// A particle carries (x, P) only: its orientation and angular momentum are never integrated.
+
+#include <string>
+#include <vector>
+
+#include "tumble/integrators.hpp"
+#include "tumble/math.hpp"
+
+namespace tumble {
+
+/// The state vector Y of one body. Both orientation forms are kept: the live one is chosen by
+/// the world's RotationRep and integrated; the other is derived from it after every step.
+struct BodyState {
+  Vec3 x = Vec3::Zero();  ///< centre of mass, world, m
+  Quat q = Quat::Identity();
+  Mat3 R = Mat3::Identity();
+  Vec3 P = Vec3::Zero();  ///< linear momentum, kg·m/s
+  Vec3 L = Vec3::Zero();  ///< angular momentum about the centre of mass, world, kg·m²/s
+};
+
+/// What the simulation needs to know of a body: plain data, built by the scene layer.
+struct BodyDef {
+  std::string name;
+  bool particle = false;
+  double mass_kg = 1.0;
+  Vec3 inertia_body = Vec3::Ones();  ///< principal moments, kg·m² (unused for a particle)
+  std::vector<Vec3> vertices;  ///< contact points in the body frame (box: its 8 corners)
+  double restitution = 0.5;    ///< against the floor, in [0, 1]
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+  Vec3 velocity = Vec3::Zero();
+  Vec3 angular_velocity = Vec3::Zero();  ///< world frame, rad/s
+};
+
+/// Principal moments of a solid box of full edge lengths `size`: m/12 (b² + c²), ...
+Vec3 box_inertia(double mass_kg, const Vec3& size);
+/// The 8 corners of a box of full edge lengths `size`, centred on the origin.
+std::vector<Vec3> box_corners(const Vec3& size);
+
+class RigidBody {
+ public:
+  explicit RigidBody(const BodyDef& def);
+
+  const std::string& name() const { return name_; }
+  bool is_particle() const { return particle_; }
+  double mass() const { return mass_; }
+  double inverse_mass() const { return inverse_mass_; }
+  const Vec3& inertia_body() const { return inertia_body_; }
+  const Vec3& inverse_inertia_body() const { return inverse_inertia_body_; }
+  const std::vector<Vec3>& vertices() const { return vertices_; }
+  double restitution() const { return restitution_; }
+
+  BodyState state;
+  /// True once the body rests in static equilibrium on the floor (see World): its exact motion
+  /// is then no motion, so it is not integrated.
+  bool at_rest = false;
+
+  Vec3 velocity() const { return state.P * inverse_mass_; }
+  /// World inverse inertia R I_body⁻¹ Rᵀ (zero for a particle).
+  Mat3 inverse_inertia_world() const;
+  Vec3 angular_velocity() const { return inverse_inertia_world() * state.L; }
+  /// Kinetic (linear + rotational) plus gravitational potential energy, zero at x = 0.
+  double energy(const Vec3& gravity) const;
+
+ private:
+  std::string name_;
+  bool particle_;
+  double mass_, inverse_mass_;
+  Vec3 inertia_body_, inverse_inertia_body_;
+  std::vector<Vec3> vertices_;
+  double restitution_;
+};
+
+}  // namespace tumble

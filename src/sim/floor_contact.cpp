@@ -1,0 +1,230 @@
+#include "floor_contact.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+
+#include "lcp.hpp"
+#include "tumble/world.hpp"
+
+namespace tumble {
+namespace {
+
+using Tol = ContactTolerances;
+
+double kinetic_energy(const RigidBody& b) { return b.energy(Vec3::Zero()); }
+
+Vec3 point_velocity(const RigidBody& b, const Vec3& omega, const Vec3& r) {
+  return b.velocity() + omega.cross(r);
+}
+
+void apply_impulse(RigidBody& b, const Vec3& r, const Vec3& impulse) {
+  b.state.P += impulse;
+  if (!b.is_particle()) b.state.L += r.cross(impulse);
+}
+
+// 2D cross product of (a - o) and (b - o) in the floor plane (x, z).
+double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+}
+
+}  // namespace
+
+double min_gap(const RigidBody& b, const BodyState& s, double floor_height, const ContactSet& set) {
+  double lowest = INFINITY;
+  for (int i : set.indices()) lowest = std::min(lowest, vertex_gap(b, s, i, floor_height));
+  return lowest;
+}
+
+ContactSet vertices_below(const RigidBody& b, const BodyState& s, double floor_height,
+                          const ContactSet& skip) {
+  ContactSet below;
+  below.floor_height = floor_height;
+  const int n = std::min(static_cast<int>(b.vertices().size()), 8);
+  for (int i = 0; i < n; ++i) {
+    const auto held = skip.indices();
+    if (std::find(held.begin(), held.end(), i) != held.end()) continue;
+    if (vertex_gap(b, s, i, floor_height) < 0.0) below.vertex[below.count++] = i;
+  }
+  return below;
+}
+
+ContactSet all_vertices(const RigidBody& b, double floor_height) {
+  ContactSet all;
+  all.floor_height = floor_height;
+  all.count = std::min(static_cast<int>(b.vertices().size()), 8);
+  for (int i = 0; i < all.count; ++i) all.vertex[i] = i;
+  return all;
+}
+
+ContactSet touching_vertices(const RigidBody& b, double floor_height, double rest_speed) {
+  ContactSet c;
+  c.floor_height = floor_height;
+  const Vec3 omega = b.angular_velocity();
+  const int n = static_cast<int>(b.vertices().size());
+  for (int i = 0; i < n && c.count < 8; ++i) {
+    if (vertex_gap(b, b.state, i, floor_height) > Tol::kTouch) continue;
+    const Vec3 r = b.state.R * b.vertices()[i];
+    if (std::abs(point_velocity(b, omega, r).y()) > rest_speed) continue;
+    c.vertex[c.count++] = i;
+  }
+  return c;
+}
+
+ContactSet held_points(const RigidBody& b, const ContactSet& c) {
+  ContactSet held;
+  held.floor_height = c.floor_height;
+  const Vec3 omega = b.angular_velocity();
+  for (int i = 0; i < c.count; ++i) {
+    const Vec3 r = b.state.R * b.vertices()[c.vertex[i]];
+    if (point_velocity(b, omega, r).y() <= Tol::kHoldSpeed) held.vertex[held.count++] = c.vertex[i];
+  }
+  return held;
+}
+
+double resolve_impact(RigidBody& b, const ContactSet& c, double rest_speed, double mu,
+                      double* normal_impulse) {
+  const int n = c.count;
+  const double e_before = kinetic_energy(b);
+  const BodyState before = b.state;
+  const Vec3 omega = b.angular_velocity();
+  const Mat3 Iinv = b.inverse_inertia_world();
+  Vec3 r[8];
+  for (Vec3& ri : r) ri.setZero();  // only the first n are used
+  LcpVector vn(n);
+  for (int i = 0; i < n; ++i) {
+    r[i] = b.state.R * b.vertices()[c.vertex[i]];
+    vn(i) = point_velocity(b, omega, r[i]).y();
+  }
+  LcpMatrix A;
+  fill_contact_matrix(b.inverse_mass(), Iinv, r, n, A);
+
+  // Newton's law per point: an approaching point leaves at >= e times its approach speed.
+  auto solve = [&](bool elastic) {
+    LcpVector rhs(n);
+    for (int i = 0; i < n; ++i) {
+      const bool bounces = elastic && vn(i) < -rest_speed;
+      rhs(i) = vn(i) < 0.0 && bounces ? (1.0 + b.restitution()) * vn(i) : vn(i);
+    }
+    const LcpVector j = solve_lcp(A, rhs);
+    for (int i = 0; i < n; ++i) {
+      normal_impulse[i] = j(i);
+      apply_impulse(b, r[i], j(i) * Vec3::UnitY());
+    }
+  };
+  solve(true);
+  // Simultaneous Newton restitution can, in rare configurations, return more energy than came
+  // in; the inelastic solution is a projection in the kinetic metric and never does.
+  if (kinetic_energy(b) > e_before * (1.0 + 1e-12)) {
+    b.state = before;
+    solve(false);
+  }
+  if (mu > 0.0) apply_friction(b, c, normal_impulse, mu);
+  return kinetic_energy(b) - e_before;
+}
+
+void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impulse,
+                    double mu) {
+  using MatF = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 16, 16>;
+  using VecF = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 16, 1>;
+  const int n = c.count;
+  if (n == 0) return;
+  const Vec3 omega = b.angular_velocity();
+  const Mat3 Iinv = b.inverse_inertia_world();
+  Vec3 r[8];
+  for (Vec3& ri : r) ri.setZero();  // only the first n are used
+  VecF u(2 * n);  // tangential slip (x, z) of every point
+  for (int i = 0; i < n; ++i) {
+    r[i] = b.state.R * b.vertices()[c.vertex[i]];
+    const Vec3 vp = point_velocity(b, omega, r[i]);
+    u.segment<2>(2 * i) << vp.x(), vp.z();
+  }
+  if (u.cwiseAbs().maxCoeff() == 0.0) return;
+  // K maps tangential impulses at the points to changes of their tangential velocities.
+  MatF K(2 * n, 2 * n);
+  for (int j = 0; j < n; ++j)
+    for (int a = 0; a < 2; ++a) {
+      const Vec3 t = a == 0 ? Vec3::UnitX() : Vec3::UnitZ();
+      const Vec3 dw = Iinv * r[j].cross(t);
+      for (int i = 0; i < n; ++i) {
+        const Vec3 dv = t * b.inverse_mass() + dw.cross(r[i]);
+        K(2 * i, 2 * j + a) = dv.x();
+        K(2 * i + 1, 2 * j + a) = dv.z();
+      }
+    }
+  VecF t = -Eigen::CompleteOrthogonalDecomposition<MatF>(K).solve(u);
+  bool sticks = true;
+  for (int i = 0; i < n; ++i)
+    if (t.segment<2>(2 * i).norm() > mu * normal_impulse[i] * (1.0 + 1e-9)) sticks = false;
+  if (!sticks) {
+    for (int i = 0; i < n; ++i) {
+      const double slip = u.segment<2>(2 * i).norm();
+      t.segment<2>(2 * i) = slip > 0.0 ? Eigen::Vector2d(-mu * normal_impulse[i] *
+                                                         u.segment<2>(2 * i) / slip)
+                                       : Eigen::Vector2d::Zero();
+    }
+    // Kinetic energy along s·t is KE0 + s (u·t) + ½ s² tᵀKt: take the s in [0, 1] that
+    // dissipates most, so sliding friction stops a slip but never reverses it.
+    const double slope = u.dot(t), curvature = t.dot(K * t);
+    if (slope >= 0.0) return;
+    const double s = curvature > 0.0 ? std::min(1.0, -slope / curvature) : 1.0;
+    t *= s;
+  }
+  for (int i = 0; i < n; ++i)
+    apply_impulse(b, r[i], Vec3(t(2 * i), 0.0, t(2 * i + 1)));
+}
+
+void classify_sliding(const RigidBody& b, ContactSet& c, double mu, double dv) {
+  c.friction = mu;
+  const Vec3 omega = b.angular_velocity();
+  for (int i = 0; i < c.count; ++i) {
+    Vec3 slip = point_velocity(b, omega, b.state.R * b.vertices()[c.vertex[i]]);
+    slip.y() = 0.0;
+    c.sliding[i] = slip.norm() > 2.0 * mu * dv;
+  }
+}
+
+double lift_out_of_floor(RigidBody& b, const ContactSet& c, double floor_height) {
+  double deepest = 0.0;
+  for (int i = 0; i < c.count; ++i)
+    deepest = std::max(deepest, -vertex_gap(b, b.state, c.vertex[i], floor_height));
+  b.state.x.y() += deepest;
+  return deepest;
+}
+
+bool can_rest(const RigidBody& b, const ContactSet& c, const Vec3& gravity) {
+  if (c.count < 3 || gravity.y() >= 0.0) return false;
+  const Vec3 omega = b.angular_velocity();
+  double reach = 0.0;
+  for (const Vec3& v : b.vertices()) reach = std::max(reach, v.norm());
+  if (b.velocity().norm() + omega.norm() * reach > Tol::kSleepSpeed) return false;
+  // Convex hull of the resting points seen from above (Andrew's monotone chain), then the centre
+  // of mass must lie strictly inside it: on an edge the body could still tip.
+  std::vector<Eigen::Vector2d> p;
+  for (int i = 0; i < c.count; ++i) {
+    const Vec3 w = b.state.x + b.state.R * b.vertices()[c.vertex[i]];
+    p.emplace_back(w.x(), w.z());
+  }
+  std::sort(p.begin(), p.end(), [](const auto& l, const auto& r) {
+    return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y());
+  });
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross2(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
+    hull[k++] = p[i];
+  }
+  if (k < 4) return false;  // fewer than 3 distinct hull corners: an edge or a point
+  const Eigen::Vector2d com(b.state.x.x(), b.state.x.z());
+  for (std::size_t i = 0; i + 1 < k; ++i) {
+    const double edge = (hull[i + 1] - hull[i]).norm();
+    if (cross2(hull[i], hull[i + 1], com) <= 1e-6 * edge) return false;
+  }
+  return true;
+}
+
+}  // namespace tumble

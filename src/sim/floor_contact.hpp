@@ -1,0 +1,57 @@
+#pragma once
+// Geometry and impulses of one body against the floor plane y = height (normal +y).
+
+#include "dynamics.hpp"
+#include "tumble/body.hpp"
+
+namespace tumble {
+
+/// Height of vertex i above the floor in state s.
+inline double vertex_gap(const RigidBody& b, const BodyState& s, int i, double floor_height) {
+  return s.x.y() + s.R.row(1).dot(b.vertices()[i]) - floor_height;
+}
+
+/// The lowest gap in s of the vertices in `set`.
+double min_gap(const RigidBody& b, const BodyState& s, double floor_height, const ContactSet& set);
+
+/// Vertices below the plane in s, other than those in `skip`.
+ContactSet vertices_below(const RigidBody& b, const BodyState& s, double floor_height,
+                          const ContactSet& skip);
+
+/// Every contact vertex of the body (at most the first 8).
+ContactSet all_vertices(const RigidBody& b, double floor_height);
+
+/// Vertices of the body's current state that touch the floor (gap <= kTouch); with a finite
+/// `rest_speed`, only those whose normal speed is at most that (resting candidates).
+ContactSet touching_vertices(const RigidBody& b, double floor_height, double rest_speed);
+
+/// The points of `c` that do not separate (normal speed <= kHoldSpeed): those the floor holds.
+ContactSet held_points(const RigidBody& b, const ContactSet& c);
+
+/// Resolves an impact at the touching vertices `c` in the current state: normal impulses from a
+/// velocity-level LCP with Newton restitution (e = 0 below `rest_speed`, or everywhere when it is
+/// infinite), then
+/// Coulomb friction when mu > 0. Never adds kinetic energy (falls back to e = 0 if it would).
+/// Writes each point's normal impulse to `normal_impulse`. Returns the energy change (J).
+double resolve_impact(RigidBody& b, const ContactSet& c, double rest_speed, double mu,
+                      double* normal_impulse);
+
+/// Coulomb friction impulses at contact points given their normal impulses: all points stick
+/// when the sticking impulse lies inside every friction cone, else each slides against its slip
+/// scaled by the step that dissipates most. Never adds kinetic energy.
+void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impulse,
+                    double mu);
+
+/// Marks the points of `c` that slide: their slip is faster than friction could stop within the
+/// stretch (2·mu·dv, with dv = |g|·stretch), so kinetic friction acts on them inside the step.
+void classify_sliding(const RigidBody& b, ContactSet& c, double mu, double dv);
+
+/// Lifts the body straight up so no resting point is below the plane; returns the depth removed.
+double lift_out_of_floor(RigidBody& b, const ContactSet& c, double floor_height);
+
+/// True when the resting points support the body in static equilibrium: at least 3 of them
+/// around the centre of mass (strictly inside their hull, seen from above), gravity pressing
+/// down, and no point of the body moving faster than kSleepSpeed.
+bool can_rest(const RigidBody& b, const ContactSet& c, const Vec3& gravity);
+
+}  // namespace tumble
