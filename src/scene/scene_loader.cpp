@@ -1,0 +1,558 @@
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <span>
+#include <system_error>
+#include <tuple>
+
+#include "tumble/scene.hpp"
+
+namespace tumble {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The tables a scene may have, in the order the documentation lists them.
+constexpr std::array<std::string_view, 6> kTableNames = {"simulation", "floor", "render",
+                                                         "camera",     "light", "body"};
+
+// Colours of bodies that name none, by body order; the first is the seed's orange box.
+constexpr std::array<Color, 6> kPalette = {Color{0xd9, 0x57, 0x2b}, Color{0x2b, 0x7b, 0xd9},
+                                           Color{0x3f, 0xa3, 0x4d}, Color{0xd9, 0xb3, 0x2b},
+                                           Color{0x8e, 0x44, 0xad}, Color{0x16, 0xa0, 0x85}};
+
+[[noreturn]] void fail(SourceLocation where, std::string message) {
+  throw Error(ErrorKind::BadInput, std::move(message), std::move(where));
+}
+
+SourceLocation location(const toml::source_position& p, const std::string& file) {
+  return {file, static_cast<int>(p.line), static_cast<int>(p.column)};
+}
+SourceLocation location(const toml::node& node, const std::string& file) {
+  return location(node.source().begin, file);
+}
+
+std::string in_quotes(std::string_view s) {
+  return '"' + std::string(s) + '"';
+}
+
+// Shortest text that reads back as the same double, so a message shows what the file said.
+std::string format_number(double x) {
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
+  return std::string(buffer.data(), result.ptr);
+}
+
+std::string_view type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    case toml::node_type::none:
+      break;
+  }
+  return "nothing";
+}
+
+std::string join(std::span<const std::string_view> names) {
+  std::string s;
+  for (const std::string_view name : names) s += (s.empty() ? "" : ", ") + std::string(name);
+  return s;
+}
+
+// " (did you mean "X"?)" when one of `known` is a likely typo target of `word`, else "".
+std::string suggestion(std::string_view word, std::span<const std::string_view> known) {
+  const auto match = closest_match(word, std::vector<std::string_view>(known.begin(), known.end()));
+  return match ? " (did you mean " + in_quotes(*match) + "?)" : "";
+}
+
+// The key of `table` not in `known` that comes first in the file, so that with several typos the
+// user fixes them top to bottom; null when every key is known.
+const toml::key* first_unknown_key(const toml::table& table,
+                                   std::span<const std::string_view> known) {
+  const toml::key* first = nullptr;
+  const auto position = [](const toml::key& k) {
+    return std::tuple(k.source().begin.line, k.source().begin.column);
+  };
+  for (auto&& [key, node] : table) {
+    if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
+    if (!first || position(key) < position(*first)) first = &key;
+  }
+  return first;
+}
+
+// An interval a number must lie in; an open end excludes its bound.
+struct Bounds {
+  double lo = -kInf;
+  double hi = kInf;
+  bool lo_open = false;
+  bool hi_open = false;
+
+  bool contains(double x) const {
+    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+  std::string describe() const {
+    if (hi == kInf) return (lo_open ? "> " : ">= ") + format_number(lo);
+    if (lo == -kInf) return (hi_open ? "< " : "<= ") + format_number(hi);
+    return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " +
+           format_number(hi) + (hi_open ? ")" : "]");
+  }
+};
+constexpr Bounds kAnyFinite{};
+constexpr Bounds kPositive{0.0, kInf, true, false};
+constexpr Bounds kNonNegative{0.0, kInf, false, false};
+constexpr Bounds kUnitInterval{0.0, 1.0, false, false};
+
+// Reads one TOML table of a scene. It rejects unknown keys as soon as it is made (a typo in a
+// required key then reads "did you mean" rather than "missing"), then converts and checks each
+// value the caller asks for, and points every error at the offending value, or at the table
+// itself for a key that is missing. Accessors return nullopt for an absent key, so a caller
+// writes its default once: `s.dt_s = r.number("dt", kPositive).value_or(s.dt_s)`.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string label, const std::string& file,
+              std::vector<std::string_view> keys)
+      : table_(table), label_(std::move(label)), file_(file), keys_(std::move(keys)) {
+    if (const toml::key* key = first_unknown_key(table_, keys_))
+      fail(location(key->source().begin, file_), "unknown key " + in_quotes(key->str()) + " in " +
+                                                     label_ + suggestion(key->str(), keys_));
+  }
+
+  bool has(std::string_view key) const { return find(key) != nullptr; }
+
+  // Where the value of `key` starts, or the table when the key is absent.
+  SourceLocation where(std::string_view key) const {
+    const toml::node* node = find(key);
+    return node ? location(*node, file_) : where();
+  }
+  SourceLocation where() const { return location(table_.source().begin, file_); }
+
+  // "dt in [simulation]": how messages name a value.
+  std::string name(std::string_view key) const { return std::string(key) + " in " + label_; }
+
+  void require(std::string_view key, std::string_view hint = {}) const {
+    if (!has(key))
+      fail(where(), "missing key " + in_quotes(key) + " in " + label_ +
+                        (hint.empty() ? "" : " (" + std::string(hint) + ")"));
+  }
+  // For keys that have no meaning in this context: accepting them silently would mislead.
+  void forbid(std::string_view key, std::string_view reason) const {
+    if (has(key)) fail(where(key), name(key) + " " + std::string(reason));
+  }
+
+  std::optional<double> number(std::string_view key, const Bounds& bounds = kAnyFinite) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    return to_number(*node, name(key), bounds);
+  }
+
+  std::optional<int> integer(std::string_view key, int lo, int hi) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    // No float is accepted here, not even 60.0: a count given as a float is a mistake.
+    if (!node->is_integer())
+      fail(where(key), name(key) + " must be an integer, got " + std::string(type_name(*node)));
+    const std::int64_t value = node->as_integer()->get();
+    if (value < lo || value > hi)
+      fail(where(key), name(key) + " must be an integer in [" + std::to_string(lo) + ", " +
+                           std::to_string(hi) + "], got " + std::to_string(value));
+    return static_cast<int>(value);
+  }
+
+  std::optional<bool> boolean(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean())
+      fail(where(key), name(key) + " must be true or false, got " + std::string(type_name(*node)));
+    return node->as_boolean()->get();
+  }
+
+  std::optional<std::string> string(std::string_view key) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (!node->is_string())
+      fail(where(key), name(key) + " must be a string, got " + std::string(type_name(*node)));
+    return node->as_string()->get();
+  }
+
+  // An array of exactly three finite numbers, each within `each`.
+  std::optional<Vec3> vec3(std::string_view key, const Bounds& each = kAnyFinite) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    const toml::array* array = node->as_array();
+    if (!array)
+      fail(where(key),
+           name(key) + " must be an array of 3 numbers, got " + std::string(type_name(*node)));
+    if (array->size() != 3)
+      fail(where(key), name(key) + " must be an array of 3 numbers, got " +
+                           std::to_string(array->size()) + " elements");
+    Vec3 v;
+    for (Eigen::Index i = 0; i < 3; ++i)
+      v[i] = to_number((*array)[static_cast<std::size_t>(i)],
+                       "element " + std::to_string(i + 1) + " of " + name(key), each);
+    return v;
+  }
+
+  // "#rrggbb", hex digits in either case.
+  std::optional<Color> color(std::string_view key) const {
+    const std::optional<std::string> text = string(key);
+    if (!text) return std::nullopt;
+    const auto hex = [&](std::size_t at) {
+      std::uint8_t value = 0;
+      const char* begin = text->data() + at;
+      const auto result = std::from_chars(begin, begin + 2, value, 16);
+      return result.ec == std::errc() && result.ptr == begin + 2 ? std::optional(value)
+                                                                 : std::nullopt;
+    };
+    if (text->size() == 7 && (*text)[0] == '#') {
+      const auto r = hex(1), g = hex(3), b = hex(5);
+      if (r && g && b) return Color{*r, *g, *b};
+    }
+    fail(where(key),
+         name(key) + " must be a colour \"#rrggbb\" (6 hex digits), got " + in_quotes(*text));
+  }
+
+  // The index in `names` of the string value of `key`.
+  std::optional<std::size_t> choice(std::string_view key,
+                                    std::span<const std::string_view> names) const {
+    const std::optional<std::string> text = string(key);
+    if (!text) return std::nullopt;
+    const auto it = std::find(names.begin(), names.end(), *text);
+    if (it == names.end())
+      fail(where(key), "unknown " + std::string(key) + " " + in_quotes(*text) +
+                           " (expected one of: " + join(names) + ")");
+    return static_cast<std::size_t>(it - names.begin());
+  }
+
+  // A nested table, such as a body's `orientation = { ... }`.
+  const toml::table* table(std::string_view key, std::string_view looks_like) const {
+    const toml::node* node = find(key);
+    if (!node) return nullptr;
+    if (!node->is_table())
+      fail(where(key), name(key) + " must be a table like " + std::string(looks_like) + ", got " +
+                           std::string(type_name(*node)));
+    return node->as_table();
+  }
+
+ private:
+  const toml::node* find(std::string_view key) const {
+    // Asking for a key not declared is a programming mistake: it would never be flagged unknown.
+    assert(std::find(keys_.begin(), keys_.end(), key) != keys_.end());
+    return table_.get(key);
+  }
+
+  double to_number(const toml::node& node, const std::string& what, const Bounds& bounds) const {
+    // Integers are welcome where a real is expected: `mass = 1` means 1.0.
+    if (!node.is_number())
+      fail(location(node, file_), what + " must be a number, got " + std::string(type_name(node)));
+    const double x = node.is_integer() ? static_cast<double>(node.as_integer()->get())
+                                       : node.as_floating_point()->get();
+    if (!std::isfinite(x))
+      fail(location(node, file_), what + " must be finite, got " + format_number(x));
+    if (!bounds.contains(x))
+      fail(location(node, file_),
+           what + " must be " + bounds.describe() + ", got " + format_number(x));
+    return x;
+  }
+
+  const toml::table& table_;
+  std::string label_;
+  const std::string& file_;
+  std::vector<std::string_view> keys_;
+};
+
+// The length of v, robust to overflow and underflow (0 only for the zero vector).
+double length(const Vec3& v) {
+  return v.stableNorm();
+}
+
+SimulationSettings read_simulation(const toml::table& table, const std::string& file) {
+  const TableReader r(
+      table, "[simulation]", file,
+      {"duration", "dt", "integrator", "rotation", "gravity", "linear_drag", "angular_drag"});
+  SimulationSettings s;
+  // The upper bound (about 11.6 days) keeps the step and frame counts of a run sane.
+  s.duration_s = r.number("duration", {0.0, 1e6, true, false}).value_or(s.duration_s);
+  s.dt_s = r.number("dt", kPositive).value_or(s.dt_s);
+  if (s.dt_s > s.duration_s)
+    fail(r.where(r.has("dt") ? "dt" : "duration"), "dt in [simulation] (" + format_number(s.dt_s) +
+                                                       " s) must not exceed duration (" +
+                                                       format_number(s.duration_s) + " s)");
+  if (const auto i = r.choice("integrator", kIntegratorNames))
+    s.integrator = static_cast<Integrator>(*i);  // kIntegratorNames is in enum order
+  if (const auto i = r.choice("rotation", kRotationNames))
+    s.rotation = static_cast<RotationRep>(*i);
+  s.gravity = r.vec3("gravity").value_or(s.gravity);
+  s.linear_drag = r.number("linear_drag", kNonNegative).value_or(s.linear_drag);
+  s.angular_drag = r.number("angular_drag", kNonNegative).value_or(s.angular_drag);
+  return s;
+}
+
+FloorSettings read_floor(const toml::table& table, const std::string& file) {
+  const TableReader r(table, "[floor]", file, {"height", "restitution", "friction"});
+  FloorSettings f;
+  f.height = r.number("height").value_or(f.height);
+  f.restitution = r.number("restitution", kUnitInterval).value_or(f.restitution);
+  f.friction = r.number("friction", kNonNegative).value_or(f.friction);
+  return f;
+}
+
+RenderSettings read_render(const toml::table& table, const std::string& file) {
+  const TableReader r(table, "[render]", file, {"fps", "width", "height", "msaa", "background"});
+  RenderSettings s;
+  s.fps = r.integer("fps", 1, 1000).value_or(s.fps);
+  // 16384 is the smallest GL_MAX_RENDERBUFFER_SIZE that GL 4.x allows a driver to offer.
+  s.width = r.integer("width", 1, 16384).value_or(s.width);
+  s.height = r.integer("height", 1, 16384).value_or(s.height);
+  // Samples per pixel, 0 = off. What a driver offers is known only at render time (llvmpipe:
+  // up to 4), so this checks only for plausibility.
+  s.msaa = r.integer("msaa", 0, 16).value_or(s.msaa);
+  s.background = r.color("background").value_or(s.background);
+  return s;
+}
+
+CameraSettings read_camera(const toml::table& table, const std::string& file,
+                           const std::vector<BodySpec>& bodies) {
+  const TableReader r(table, "[camera]", file, {"position", "target", "up", "fov_deg", "follow"});
+  CameraSettings c;
+  c.position = r.vec3("position").value_or(c.position);
+  c.target = r.vec3("target").value_or(c.target);
+  c.up = r.vec3("up").value_or(c.up);
+  c.fov_deg = r.number("fov_deg", {0.0, 180.0, true, true}).value_or(c.fov_deg);
+
+  // Blame the first of these keys the file gives: it is what the user wrote.
+  const auto blame = [&](std::initializer_list<std::string_view> keys) {
+    for (const std::string_view key : keys)
+      if (r.has(key)) return r.where(key);
+    return r.where();
+  };
+  const Vec3 view = c.target - c.position;
+  if (length(view) == 0.0)
+    fail(blame({"target", "position"}), "target in [camera] must differ from position");
+  // A look-at builds its right vector from up x view; when the two are within about 1e-6 rad of
+  // parallel that vector is mostly round-off and the image spins unpredictably. Written so that
+  // a NaN (a zero up, or a view so long it overflows) fails the test too.
+  const double sine = length((c.up / length(c.up)).cross(view / length(view)));
+  if (!(sine >= 1e-6))
+    fail(blame({"up", "target", "position"}),
+         "up in [camera] must be non-zero and not parallel to the view direction "
+         "(target - position)");
+
+  c.follow = r.string("follow");
+  if (c.follow) {
+    std::vector<std::string_view> names;
+    for (const BodySpec& body : bodies) names.push_back(body.name);
+    if (std::find(names.begin(), names.end(), *c.follow) == names.end())
+      fail(r.where("follow"), "follow in [camera] names no body: " + in_quotes(*c.follow) +
+                                  suggestion(*c.follow, names));
+  }
+  return c;
+}
+
+LightSettings read_light(const toml::table& table, const std::string& file) {
+  const TableReader r(table, "[light]", file, {"direction", "shadows"});
+  LightSettings l;
+  l.direction = r.vec3("direction").value_or(l.direction);
+  if (length(l.direction) == 0.0)
+    fail(r.where("direction"), "direction in [light] must be non-zero");
+  l.shadows = r.boolean("shadows").value_or(l.shadows);
+  return l;
+}
+
+// `orientation = { axis = [x, y, z], degrees = d }`: a rotation of d degrees about axis.
+Quat read_orientation(const toml::table& table, const std::string& file) {
+  const TableReader r(table, "[[body]] orientation", file, {"axis", "degrees"});
+  r.require("axis", "a direction [x, y, z], any length but zero");
+  r.require("degrees", "the angle of rotation about axis");
+  const Vec3 axis = *r.vec3("axis");
+  const double axis_length = length(axis);
+  if (axis_length == 0.0) fail(r.where("axis"), "axis in [[body]] orientation must be non-zero");
+  const double degrees = *r.number("degrees");
+  return Quat(Eigen::AngleAxisd(radians(degrees), axis / axis_length));
+}
+
+// `number` is the body's 1-based place in the file; it picks the default name and colour.
+BodySpec read_body(const toml::table& table, std::size_t number, const std::string& file) {
+  const TableReader r(table, "[[body]]", file,
+                      {"name", "shape", "size", "mass", "density", "position", "orientation",
+                       "velocity", "angular_velocity", "restitution", "color", "mesh", "scale"});
+  BodySpec b;
+  b.where = r.where();
+  b.name = r.string("name").value_or("body" + std::to_string(number));
+  if (b.name.empty()) fail(r.where("name"), "name in [[body]] must not be empty");
+
+  std::vector<std::string_view> shape_names;
+  for (const Shape shape : {Shape::Box, Shape::Particle, Shape::Mesh})
+    shape_names.push_back(to_string(shape));
+  r.require("shape", "expected one of: " + join(shape_names));
+  b.shape = static_cast<Shape>(*r.choice("shape", shape_names));
+  if (b.shape == Shape::Mesh)
+    fail(r.where("shape"),
+         "shape \"mesh\" is not supported yet (mesh import arrives with assimp support)");
+
+  // Meshes are rejected above, so `mesh` and `scale` can only be misplaced here; scale is still
+  // range-checked first so that the message about a bad value comes before the one about place.
+  b.scale = r.number("scale", kPositive).value_or(b.scale);
+  b.mesh = r.string("mesh").value_or("");
+  r.forbid("mesh", "applies only to shape = \"mesh\"");
+  r.forbid("scale", "applies only to shape = \"mesh\"");
+
+  if (b.shape == Shape::Box) r.require("size", "a box needs its full edge lengths [x, y, z], m");
+  // A particle has no extent to simulate; its size is only how big it is drawn, m.
+  if (b.shape == Shape::Particle) b.size = Vec3::Constant(0.1);
+  b.size = r.vec3("size", kPositive).value_or(b.size);
+
+  b.mass = r.number("mass", kPositive);
+  b.density = r.number("density", kPositive);
+  if (b.shape == Shape::Particle)
+    r.forbid("density", "does not apply to a particle: it has no volume, give its mass");
+  if (b.mass && b.density) fail(r.where("density"), "give mass or density in [[body]], not both");
+  if (!b.mass && !b.density)
+    fail(r.where(), "missing key \"mass\" or \"density\" in [[body]] (kg or kg/m^3)");
+
+  b.position = r.vec3("position").value_or(b.position);
+  b.velocity = r.vec3("velocity").value_or(b.velocity);
+  // A particle carries no rotation state, so these would be silently dropped.
+  if (b.shape == Shape::Particle) {
+    r.forbid("orientation", "does not apply to a particle: it has no orientation");
+    r.forbid("angular_velocity", "does not apply to a particle: it does not rotate");
+  }
+  if (const toml::table* o = r.table("orientation", "{ axis = [x, y, z], degrees = d }"))
+    b.orientation = read_orientation(*o, file);
+  b.angular_velocity = r.vec3("angular_velocity").value_or(b.angular_velocity);
+  b.restitution = r.number("restitution", kUnitInterval);
+  b.color = r.color("color").value_or(kPalette[(number - 1) % kPalette.size()]);
+  return b;
+}
+
+std::vector<BodySpec> read_bodies(const toml::table& root, const std::string& file) {
+  const toml::node* node = root.get("body");
+  if (!node) fail({file}, "a scene needs at least one [[body]]");
+  const toml::array* array = node->as_array();
+  if (!array)
+    fail(location(*node, file),
+         "body must be an array of tables, written [[body]], got " + std::string(type_name(*node)));
+  if (array->empty()) fail(location(*node, file), "a scene needs at least one [[body]]");
+
+  std::vector<BodySpec> bodies;
+  for (const toml::node& element : *array) {
+    const toml::table* table = element.as_table();
+    if (!table)
+      fail(location(element, file),
+           "each body must be a table, written [[body]], got " + std::string(type_name(element)));
+    BodySpec body = read_body(*table, bodies.size() + 1, file);
+    for (const BodySpec& other : bodies) {
+      if (other.name != body.name) continue;
+      const toml::node* name = table->get("name");
+      fail(name ? location(*name, file) : body.where,
+           "duplicate body name " + in_quotes(body.name) + " (first used by the [[body]] on line " +
+               std::to_string(other.where.line) + ")" +
+               (name ? "" : "; this [[body]] has no name and was given that default: name it"));
+    }
+    bodies.push_back(std::move(body));
+  }
+  return bodies;
+}
+
+// A top-level table such as [render], or null when the file has none.
+const toml::table* section(const toml::table& root, std::string_view name,
+                           const std::string& file) {
+  const toml::node* node = root.get(name);
+  if (!node) return nullptr;
+  if (!node->is_table())
+    fail(location(*node, file),
+         "[" + std::string(name) + "] must be a table, got " + std::string(type_name(*node)));
+  return node->as_table();
+}
+
+void reject_unknown_tables(const toml::table& root, const std::string& file) {
+  const toml::key* key = first_unknown_key(root, kTableNames);
+  if (!key) return;
+  const toml::node& node = *root.get(key->str());
+  const std::string what = node.is_array_of_tables() ? "table [[" + std::string(key->str()) + "]]"
+                           : node.is_table()         ? "table [" + std::string(key->str()) + "]"
+                                                     : "top-level key " + in_quotes(key->str());
+  fail(location(key->source().begin, file),
+       "unknown " + what + suggestion(key->str(), kTableNames));
+}
+
+toml::table parse_toml(std::string_view text, const std::string& file) {
+  try {
+    return toml::parse(text, std::string_view(file));
+  } catch (const toml::parse_error& e) {
+    // toml++ words its errors "Error while parsing <part>: <problem>"; the CLI already says
+    // "error:", so say what kind of error instead.
+    constexpr std::string_view kPrefix = "Error while parsing ";
+    std::string_view description = e.description();
+    const bool has_prefix = description.starts_with(kPrefix);
+    if (has_prefix) description.remove_prefix(kPrefix.size());
+    fail(location(e.source().begin, file),
+         std::string(has_prefix ? "TOML syntax error in " : "TOML syntax error: ") +
+             std::string(description));
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(std::string_view text, const std::string& source_name) {
+  const toml::table root = parse_toml(text, source_name);
+  reject_unknown_tables(root, source_name);
+
+  Scene scene;
+  scene.source_name = source_name;
+  scene.source_text = std::string(text);
+  scene.stem = std::filesystem::path(source_name).stem().string();
+  if (const toml::table* t = section(root, "simulation", source_name))
+    scene.simulation = read_simulation(*t, source_name);
+  if (const toml::table* t = section(root, "floor", source_name))
+    scene.floor = read_floor(*t, source_name);
+  if (const toml::table* t = section(root, "render", source_name))
+    scene.render = read_render(*t, source_name);
+  // Bodies before the camera: `follow` must name one of them.
+  scene.bodies = read_bodies(root, source_name);
+  if (const toml::table* t = section(root, "camera", source_name))
+    scene.camera = read_camera(*t, source_name, scene.bodies);
+  if (const toml::table* t = section(root, "light", source_name))
+    scene.light = read_light(*t, source_name);
+  return scene;
+}
+
+Scene load_scene_file(const std::filesystem::path& path) {
+  const auto cannot_read = [&](const std::string& reason) {
+    fail({}, "cannot read scene file " + in_quotes(path.string()) + ": " + reason);
+  };
+  // Opening a directory succeeds on Linux and only the read fails; say what is wrong up front.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) cannot_read("it is a directory");
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) cannot_read(errno ? std::generic_category().message(errno) : "cannot open it");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) cannot_read("read failed");
+  return parse_scene(text, path.string());
+}
+
+}  // namespace tumble
