@@ -1,1 +1,43 @@
-int main() { return 0; }
+// tumble's command line: parses, dispatches to one subcommand, and turns every failure into one
+// message on stderr and the exit code SPEC.md gives (2 bad input, 3 environment / I/O).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+#include "tumble/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace tumble;
+  CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};
+  app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
+  app.require_subcommand(1);
+  cli::SimulateOptions simulate;
+  cli::add_simulate_command(app, simulate);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 has its own exit codes (e.g. 105); a command-line mistake is bad input: 2.
+    std::fprintf(stderr, "tumble: error: %s\nRun 'tumble --help' for usage.\n", e.what());
+    return static_cast<int>(ErrorKind::BadInput);
+  }
+
+  try {
+    if (app.got_subcommand("simulate")) return cli::run_simulate(simulate);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "tumble: error: %s\n", e.describe().c_str());
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    // Anything else is an environment failure (allocation, file system), never a crash.
+    std::fprintf(stderr, "tumble: error: %s\n", e.what());
+    return static_cast<int>(ErrorKind::Environment);
+  }
+  return 0;
+}

@@ -1,0 +1,15 @@
+#pragma once
+/// SHA-256 (FIPS 180-4) of bytes and of files, as lowercase hex: run.json names every input and
+/// output by its digest so a run can be checked byte for byte.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace tumble {
+
+std::string sha256_hex(std::string_view bytes);
+/// Throws tumble::Error (Environment) when the file cannot be read.
+std::string sha256_file_hex(const std::filesystem::path& path);
+
+}  // namespace tumble

@@ -1,0 +1,40 @@
+#pragma once
+// The subcommands, each a thin client of the library. Options shared by every command that runs
+// a scene live in CommonOptions; apply_overrides() checks them as strictly as the scene loader.
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "tumble/scene.hpp"
+
+namespace tumble::cli {
+
+struct CommonOptions {
+  std::string scene_path;  // empty: the built-in default scene
+  std::string out_dir;     // empty: out/<scene-stem>/
+  std::optional<double> duration_s, dt_s;
+  std::optional<int> fps;
+  std::string size;  // "WxH"
+  std::string integrator;
+  bool quiet = false;
+};
+
+/// Registers the common options on a subcommand.
+void add_common_options(CLI::App& cmd, CommonOptions& o);
+/// Loads the scene (or the default) and applies the command-line overrides; throws
+/// tumble::Error (BadInput) for a bad value.
+Scene load_scene(const CommonOptions& o);
+/// The output folder, created. Throws tumble::Error (Environment) when it cannot be.
+std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene);
+
+struct SimulateOptions {
+  CommonOptions common;
+  std::optional<double> rate_hz;
+  bool every_step = false;
+};
+void add_simulate_command(CLI::App& app, SimulateOptions& o);
+int run_simulate(const SimulateOptions& o);
+
+}  // namespace tumble::cli

@@ -1,0 +1,78 @@
+#include <cmath>
+#include <cstdio>
+#include <regex>
+
+#include "commands.hpp"
+#include "tumble/atomic_file.hpp"
+
+namespace tumble::cli {
+namespace {
+
+[[noreturn]] void bad(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
+
+// More steps than this is a typo (dt in ms?), not a run anyone waits for.
+constexpr double kMaxSteps = 1e9;
+
+}  // namespace
+
+void add_common_options(CLI::App& cmd, CommonOptions& o) {
+  cmd.add_option("scene", o.scene_path, "Scene file (TOML); omitted: the built-in default scene");
+  cmd.add_option("--out", o.out_dir, "Output folder (default: out/<scene-stem>/)");
+  cmd.add_option("--duration", o.duration_s, "Simulated seconds (overrides the scene)");
+  cmd.add_option("--dt", o.dt_s, "Fixed physics step in seconds (overrides the scene)");
+  cmd.add_option("--fps", o.fps, "Frames per second (overrides the scene)");
+  cmd.add_option("--size", o.size, "Image size WxH, e.g. 1280x720 (overrides the scene)");
+  cmd.add_option("--integrator", o.integrator,
+                 "euler | symplectic-euler | midpoint | rk4 (overrides the scene)");
+  cmd.add_flag("--quiet,-q", o.quiet, "Print nothing but errors");
+}
+
+Scene load_scene(const CommonOptions& o) {
+  Scene scene = o.scene_path.empty() ? default_scene() : load_scene_file(o.scene_path);
+  SimulationSettings& sim = scene.simulation;
+  if (o.duration_s) {
+    if (!std::isfinite(*o.duration_s) || *o.duration_s <= 0.0 || *o.duration_s > 1e6)
+      bad("--duration must be a number of seconds in (0, 1e6]");
+    sim.duration_s = *o.duration_s;
+  }
+  if (o.dt_s) {
+    if (!std::isfinite(*o.dt_s) || *o.dt_s <= 0.0) bad("--dt must be a positive number of seconds");
+    sim.dt_s = *o.dt_s;
+  }
+  if (sim.dt_s > sim.duration_s)
+    bad("the step dt = " + std::to_string(sim.dt_s) + " s is longer than the run (" +
+        std::to_string(sim.duration_s) + " s)");
+  if (sim.duration_s / sim.dt_s > kMaxSteps)
+    bad("duration / dt asks for more than 1e9 steps; is dt in seconds?");
+  if (!o.integrator.empty()) {
+    const auto integrator = parse_integrator(o.integrator);
+    if (!integrator)
+      bad("unknown integrator \"" + o.integrator +
+          "\" (expected one of: euler, symplectic-euler, midpoint, rk4)");
+    sim.integrator = *integrator;
+  }
+  if (o.fps) {
+    if (*o.fps < 1 || *o.fps > 1000) bad("--fps must be an integer in [1, 1000]");
+    scene.render.fps = *o.fps;
+  }
+  if (!o.size.empty()) {
+    static const std::regex kSize(R"((\d{1,9})x(\d{1,9}))");
+    std::smatch m;
+    if (!std::regex_match(o.size, m, kSize)) bad("--size must look like 1280x720");
+    const long w = std::stol(m[1]), h = std::stol(m[2]);
+    if (w < 1 || h < 1 || w > 16384 || h > 16384)
+      bad("--size " + o.size + " is out of range: width and height must be in [1, 16384]");
+    scene.render.width = static_cast<int>(w);
+    scene.render.height = static_cast<int>(h);
+  }
+  return scene;
+}
+
+std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene) {
+  const std::filesystem::path dir =
+      o.out_dir.empty() ? std::filesystem::path("out") / scene.stem : std::filesystem::path(o.out_dir);
+  make_output_dir(dir);
+  return dir;
+}
+
+}  // namespace tumble::cli

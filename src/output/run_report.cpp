@@ -1,0 +1,96 @@
+#include "tumble/run_report.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "tumble/atomic_file.hpp"
+#include "tumble/sha256.hpp"
+
+namespace tumble {
+namespace {
+
+using nlohmann::ordered_json;
+
+ordered_json vec(const Vec3& v) { return ordered_json::array({v.x(), v.y(), v.z()}); }
+
+ordered_json settings_json(const Scene& s) {
+  ordered_json j;
+  const SimulationSettings& sim = s.simulation;
+  j["simulation"] = {{"duration_s", sim.duration_s},
+                     {"dt_s", sim.dt_s},
+                     {"integrator", to_string(sim.integrator)},
+                     {"rotation", to_string(sim.rotation)},
+                     {"gravity", vec(sim.gravity)},
+                     {"linear_drag", sim.linear_drag},
+                     {"angular_drag", sim.angular_drag}};
+  if (s.floor)
+    j["floor"] = {{"height", s.floor->height},
+                  {"restitution", s.floor->restitution},
+                  {"friction", s.floor->friction}};
+  else
+    j["floor"] = nullptr;
+  j["render"] = {{"fps", s.render.fps},
+                 {"width", s.render.width},
+                 {"height", s.render.height},
+                 {"msaa", s.render.msaa},
+                 {"background", to_string(s.render.background)}};
+  j["camera"] = {{"position", vec(s.camera.position)},
+                 {"target", vec(s.camera.target)},
+                 {"up", vec(s.camera.up)},
+                 {"fov_deg", s.camera.fov_deg},
+                 {"follow", s.camera.follow ? ordered_json(*s.camera.follow) : ordered_json()}};
+  j["light"] = {{"direction", vec(s.light.direction)}, {"shadows", s.light.shadows}};
+  return j;
+}
+
+}  // namespace
+
+void write_run_report(const std::filesystem::path& path, const RunReport& r) {
+  ordered_json j;
+  j["tool"] = {{"name", "tumble"}, {"version", TUMBLE_VERSION}};
+  j["command"] = r.command;
+  if (r.scene) {
+    j["scene"] = {{"path", r.scene->source_name},
+                  {"sha256", sha256_hex(r.scene->source_text)}};
+    j["settings"] = settings_json(*r.scene);
+  }
+  j["counts"] = {{"steps", r.steps},
+                 {"samples", r.samples},
+                 {"sample_rate_hz", r.sample_rate_hz},
+                 {"every_step", r.every_step}};
+  j["gl"] = r.gl_renderer.empty()
+                ? ordered_json()
+                : ordered_json{{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}};
+  j["encoder"] = r.encoder.empty() ? ordered_json() : ordered_json(r.encoder);
+  ordered_json times;
+  auto stage = [&](const char* name, const std::optional<double>& s) {
+    if (s) times[name] = *s;
+  };
+  stage("simulate_s", r.times.simulate_s);
+  stage("render_s", r.times.render_s);
+  stage("readback_s", r.times.readback_s);
+  stage("encode_s", r.times.encode_s);
+  stage("png_s", r.times.png_s);
+  times["total_s"] = r.times.total_s;
+  j["wall_time"] = times;
+  j["physics"] = {{"energy_start_J", r.energy_start_J},
+                  {"energy_end_J", r.energy_end_J},
+                  {"max_contact_energy_gain_J", r.contact.max_energy_gain_J},
+                  {"contacts", r.contact.impacts},
+                  {"deepest_penetration_m", r.contact.deepest_penetration_m}};
+  ordered_json outputs = ordered_json::array();
+  for (const auto& p : r.outputs)
+    outputs.push_back({{"path", p.string()}, {"sha256", sha256_file_hex(p)}});
+  j["outputs"] = outputs;
+  ordered_json bodies = ordered_json::array();
+  if (r.world)
+    for (const RigidBody& b : r.world->bodies())
+      bodies.push_back({{"name", b.name()},
+                        {"shape", b.is_particle() ? "particle" : "box"},
+                        {"mass_kg", b.mass()},
+                        {"com_offset_m", vec(Vec3::Zero())},
+                        {"principal_moments_kg_m2", vec(b.inertia_body())}});
+  j["bodies"] = bodies;
+  write_file_atomically(path, j.dump(2) + "\n");
+}
+
+}  // namespace tumble

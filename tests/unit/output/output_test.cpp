@@ -1,0 +1,88 @@
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "tumble/atomic_file.hpp"
+#include "tumble/error.hpp"
+#include "tumble/sha256.hpp"
+#include "tumble/trajectory_writer.hpp"
+
+namespace tumble {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("tumble_output_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(Sha256, MatchesFipsVectors) {
+  EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(sha256_hex(std::string(1000000, 'a')),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+TEST(AtomicFile, AppearsOnlyOnCommit) {
+  const fs::path dir = fresh_dir("commit");
+  const fs::path target = dir / "a.txt";
+  {
+    AtomicFile f(target);
+    f.write("hello");
+    EXPECT_FALSE(fs::exists(target));
+    EXPECT_TRUE(fs::exists(f.temporary_path()));
+    f.commit();
+  }
+  EXPECT_EQ(slurp(target), "hello");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicFile, AbandonedWriteKeepsThePreviousGoodFile) {
+  const fs::path dir = fresh_dir("abandon");
+  const fs::path target = dir / "a.txt";
+  write_file_atomically(target, "good");
+  {
+    AtomicFile f(target);
+    f.write("half-writ");
+    // destroyed without commit, as when an exception unwinds
+  }
+  EXPECT_EQ(slurp(target), "good");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(AtomicFile, UnwritableFolderIsAnEnvironmentError) {
+  try {
+    AtomicFile f("/proc/tumble-cannot-write-here/a.txt");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exit_code(), 3);
+    EXPECT_NE(std::string(e.what()).find("cannot write"), std::string::npos);
+  }
+}
+
+TEST(FormatDouble, ReadsBackBitExact) {
+  for (double x : {0.1, 1.0 / 3.0, -9.81, 1e-300, 6.02214076e23, 0.0, -0.0, 4.9e-324}) {
+    const std::string s = format_double(x);
+    const double back = std::strtod(s.c_str(), nullptr);
+    EXPECT_EQ(std::memcmp(&x, &back, sizeof x), 0) << s;
+  }
+  EXPECT_EQ(format_double(0.5), "0.5");
+}
+
+}  // namespace
+}  // namespace tumble
