@@ -1,0 +1,63 @@
+#include "../../../src/sim/lcp.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace tumble {
+namespace {
+
+// Checks f >= 0, w = A f + b >= 0 and f·w = 0, each to 1e-9 of the problem's scale.
+void expect_complementary(const LcpMatrix& A, const LcpVector& b, const LcpVector& f) {
+  const LcpVector w = A * f + b;
+  const double tol = 1e-9 * std::max(1.0, b.cwiseAbs().maxCoeff());
+  for (int i = 0; i < f.size(); ++i) {
+    EXPECT_GE(f(i), -tol);
+    EXPECT_GE(w(i), -tol);
+    EXPECT_LT(std::abs(f(i) * w(i)), tol * std::max(1.0, std::abs(f(i))));
+  }
+}
+
+TEST(Lcp, FourCoplanarPointsGetEqualForces) {
+  // A unit box resting flat: rows are linearly dependent (rank 3), the min-norm answer is
+  // symmetric: m g / 4 at each corner.
+  const double m = 1.0, I = m / 6.0, g = 9.81;
+  const double r[4][2] = {{-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}, {0.5, 0.5}};  // (x, z)
+  LcpMatrix A(4, 4);
+  LcpVector b(4);
+  for (int i = 0; i < 4; ++i) {
+    b(i) = -g;
+    for (int j = 0; j < 4; ++j)
+      A(i, j) = 1.0 / m + (r[i][0] * r[j][0] + r[i][1] * r[j][1]) / I;
+  }
+  const LcpVector f = solve_lcp(A, b);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(f(i), m * g / 4.0, 1e-12);
+  expect_complementary(A, b, f);
+}
+
+TEST(Lcp, SeparatingPointsGetNoForce) {
+  LcpMatrix A(2, 2);
+  A << 2.0, 1.0, 1.0, 2.0;
+  LcpVector b(2);
+  b << -1.0, 3.0;
+  const LcpVector f = solve_lcp(A, b);
+  EXPECT_NEAR(f(0), 0.5, 1e-12);
+  EXPECT_EQ(f(1), 0.0);
+  expect_complementary(A, b, f);
+}
+
+TEST(Lcp, RandomPsdProblemsAreSolvedExactly) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % kMaxLcpSize;
+    const int rank = 1 + trial % 3 + (trial % 2) * 3;  // contact matrices have rank <= 6
+    Eigen::MatrixXd J = Eigen::MatrixXd::NullaryExpr(n, rank, [&] { return normal(rng); });
+    LcpMatrix A = J * J.transpose() + 1e-3 * Eigen::MatrixXd::Identity(n, n);
+    LcpVector b = LcpVector::NullaryExpr(n, [&] { return normal(rng); });
+    expect_complementary(A, b, solve_lcp(A, b));
+  }
+}
+
+}  // namespace
+}  // namespace tumble
