@@ -1,0 +1,23 @@
+#pragma once
+/// An 8-bit image with rows stored top-down and tightly packed: what PNG files hold, what the
+/// renderer hands to sinks (after its one flip), what `diff` compares.
+
+#include <cstdint>
+#include <vector>
+
+namespace tumble {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  int channels = 3;  ///< 3 = RGB, 4 = RGBA
+  std::vector<std::uint8_t> pixels;
+
+  Image() = default;
+  Image(int w, int h, int c) : width(w), height(h), channels(c), pixels(std::size_t(w) * h * c) {}
+  std::size_t stride() const { return std::size_t(width) * channels; }
+  std::uint8_t* row(int y) { return pixels.data() + std::size_t(y) * stride(); }
+  const std::uint8_t* row(int y) const { return pixels.data() + std::size_t(y) * stride(); }
+};
+
+}  // namespace tumble
