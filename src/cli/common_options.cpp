@@ -1,6 +1,6 @@
 #include <cmath>
 #include <cstdio>
-#include <regex>
+#include <charconv>
 
 #include "commands.hpp"
 #include "tumble/atomic_file.hpp"
@@ -56,10 +56,17 @@ Scene load_scene(const CommonOptions& o) {
     scene.render.fps = *o.fps;
   }
   if (!o.size.empty()) {
-    static const std::regex kSize(R"((\d{1,9})x(\d{1,9}))");
-    std::smatch m;
-    if (!std::regex_match(o.size, m, kSize)) bad("--size must look like 1280x720");
-    const long w = std::stol(m[1]), h = std::stol(m[2]);
+    // "WxH": two decimal integers around one 'x'.
+    long w = 0, h = 0;
+    const std::string& z = o.size;
+    const std::size_t x = z.find('x');
+    const auto [end_w, err_w] = std::from_chars(z.data(), z.data() + (x == z.npos ? 0 : x), w);
+    const auto [end_h, err_h] =
+        x == z.npos ? std::from_chars_result{nullptr, std::errc::invalid_argument}
+                    : std::from_chars(z.data() + x + 1, z.data() + z.size(), h);
+    if (x == z.npos || x == 0 || err_w != std::errc() || end_w != z.data() + x ||
+        err_h != std::errc() || end_h != z.data() + z.size())
+      bad("--size must look like 1280x720, not \"" + z + "\"");
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
       bad("--size " + o.size + " is out of range: width and height must be in [1, 16384]");
     scene.render.width = static_cast<int>(w);
