@@ -44,11 +44,17 @@ struct FloorSettings {
   double friction = 0.0;     ///< Coulomb mu >= 0; 0 = frictionless
 };
 
+/// How edges are anti-aliased. FXAA is one cheap full-screen pass (the default: on a CPU
+/// rasteriser 4x MSAA triples the cost of a frame); MSAA takes `msaa` samples per pixel.
+enum class Antialias { Fxaa, Msaa, None };
+inline constexpr std::array<std::string_view, 3> kAntialiasNames = {"fxaa", "msaa", "none"};
+
 struct RenderSettings {
   int fps = 60;
   int width = 1280;
   int height = 720;
-  int msaa = 4;
+  Antialias antialias = Antialias::Fxaa;
+  int msaa = 4;  ///< samples when antialias = msaa
   Color background{0xdf, 0xe6, 0xee};
 };
 
@@ -94,12 +100,19 @@ struct Scene {
   std::vector<BodySpec> bodies;
 };
 
+/// Command-line values for the run's length and step: they replace the file's before the
+/// file's dt <= duration check (the caller then checks the overridden pair).
+struct TimeOverrides {
+  std::optional<double> duration_s, dt_s;
+};
+
 /// Parses and validates scene text. `source_name` is used in error locations and to resolve
 /// mesh paths. Throws tumble::Error (BadInput) with file:line:column on any problem.
-Scene parse_scene(std::string_view text, const std::string& source_name);
+Scene parse_scene(std::string_view text, const std::string& source_name,
+                  const TimeOverrides& overrides = {});
 
 /// Reads and parses a scene file. A file that cannot be read is BadInput (exit 2).
-Scene load_scene_file(const std::filesystem::path& path);
+Scene load_scene_file(const std::filesystem::path& path, const TimeOverrides& overrides = {});
 
 /// The seed's experiment: a box dropped with a tilt and a spin onto a floor.
 Scene default_scene();

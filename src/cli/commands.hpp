@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "tumble/scene.hpp"
 
@@ -36,5 +37,21 @@ struct SimulateOptions {
 };
 void add_simulate_command(CLI::App& app, SimulateOptions& o);
 int run_simulate(const SimulateOptions& o);
+
+struct RenderOptions {
+  CommonOptions common;
+  bool png = false;
+  bool no_mp4 = false;
+  std::vector<double> stills;
+  int crf = 23;
+  std::optional<int> msaa;
+  std::string encoder = "auto";
+  std::optional<int> egl_device;
+};
+void add_render_command(CLI::App& app, RenderOptions& o);
+int run_render(const RenderOptions& o);
+
+void add_info_command(CLI::App& app);
+int run_info();
 
 }  // namespace tumble::cli

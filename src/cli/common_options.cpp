@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "tumble/atomic_file.hpp"
+#include "tumble/trajectory_writer.hpp"
 
 namespace tumble::cli {
 namespace {
@@ -28,7 +29,8 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
 }
 
 Scene load_scene(const CommonOptions& o) {
-  Scene scene = o.scene_path.empty() ? default_scene() : load_scene_file(o.scene_path);
+  Scene scene = o.scene_path.empty() ? default_scene()
+                                     : load_scene_file(o.scene_path, {o.duration_s, o.dt_s});
   SimulationSettings& sim = scene.simulation;
   if (o.duration_s) {
     if (!std::isfinite(*o.duration_s) || *o.duration_s <= 0.0 || *o.duration_s > 1e6)
@@ -40,8 +42,8 @@ Scene load_scene(const CommonOptions& o) {
     sim.dt_s = *o.dt_s;
   }
   if (sim.dt_s > sim.duration_s)
-    bad("the step dt = " + std::to_string(sim.dt_s) + " s is longer than the run (" +
-        std::to_string(sim.duration_s) + " s)");
+    bad("the step dt = " + format_double(sim.dt_s) + " s is longer than the run (" +
+        format_double(sim.duration_s) + " s)");
   if (sim.duration_s / sim.dt_s > kMaxSteps)
     bad("duration / dt asks for more than 1e9 steps; is dt in seconds?");
   if (!o.integrator.empty()) {

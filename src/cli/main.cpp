@@ -12,8 +12,11 @@ int main(int argc, char** argv) {
   CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};
   app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
   app.require_subcommand(1);
+  cli::RenderOptions render;
+  cli::add_render_command(app, render);
   cli::SimulateOptions simulate;
   cli::add_simulate_command(app, simulate);
+  cli::add_info_command(app);
 
   try {
     app.parse(argc, argv);
@@ -30,7 +33,9 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (app.got_subcommand("render")) return cli::run_render(render);
     if (app.got_subcommand("simulate")) return cli::run_simulate(simulate);
+    if (app.got_subcommand("info")) return cli::run_info();
   } catch (const Error& e) {
     std::fprintf(stderr, "tumble: error: %s\n", e.describe().c_str());
     return e.exit_code();

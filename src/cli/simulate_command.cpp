@@ -71,9 +71,11 @@ int run_simulate(const SimulateOptions& o) {
   Progress progress(!o.common.quiet, samples);
   double energy_start = 0.0, energy_end = 0.0;
   for (long k = 0; k < samples; ++k) {
-    // Every step boundary n·dt, the last one being the end of the run; or k/rate.
-    const double t = o.every_step ? (k == steps ? duration : static_cast<double>(k) * dt)
-                                  : static_cast<double>(k) / rate;
+    // Every step boundary n·dt, or k/rate; the last sample is the end of the run exactly, so
+    // the final state is always in the trajectory even when duration·rate is not whole.
+    const double t = k == samples - 1 ? duration
+                     : o.every_step   ? static_cast<double>(k) * dt
+                                      : static_cast<double>(k) / rate;
     const World snapshot = sampler.at(t);
     csv.write(t, snapshot);
     if (k == 0) energy_start = snapshot.total_energy();
@@ -86,7 +88,7 @@ int run_simulate(const SimulateOptions& o) {
   RunReport report;
   report.command = "simulate";
   report.scene = &scene;
-  report.steps = world.step_count();
+  report.steps = steps;  // the last may have been taken part-way, on a copy
   report.samples = samples;
   report.sample_rate_hz = o.every_step ? 1.0 / dt : rate;
   report.every_step = o.every_step;

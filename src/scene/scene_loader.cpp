@@ -289,7 +289,8 @@ double length(const Vec3& v) {
   return v.stableNorm();
 }
 
-SimulationSettings read_simulation(const toml::table& table, const std::string& file) {
+SimulationSettings read_simulation(const toml::table& table, const std::string& file,
+                                   const TimeOverrides& overrides) {
   const TableReader r(
       table, "[simulation]", file,
       {"duration", "dt", "integrator", "rotation", "gravity", "linear_drag", "angular_drag"});
@@ -297,7 +298,12 @@ SimulationSettings read_simulation(const toml::table& table, const std::string& 
   // The upper bound (about 11.6 days) keeps the step and frame counts of a run sane.
   s.duration_s = r.number("duration", {0.0, 1e6, true, false}).value_or(s.duration_s);
   s.dt_s = r.number("dt", kPositive).value_or(s.dt_s);
-  if (s.dt_s > s.duration_s)
+  // Command-line values replace the file's before the cross-check: --duration or --dt may be
+  // exactly what makes a scene's pair valid. The caller checks the overridden pair itself.
+  if (overrides.duration_s || overrides.dt_s) {
+    s.duration_s = overrides.duration_s.value_or(s.duration_s);
+    s.dt_s = overrides.dt_s.value_or(s.dt_s);
+  } else if (s.dt_s > s.duration_s)
     fail(r.where(r.has("dt") ? "dt" : "duration"), "dt in [simulation] (" + format_number(s.dt_s) +
                                                        " s) must not exceed duration (" +
                                                        format_number(s.duration_s) + " s)");
@@ -321,7 +327,8 @@ FloorSettings read_floor(const toml::table& table, const std::string& file) {
 }
 
 RenderSettings read_render(const toml::table& table, const std::string& file) {
-  const TableReader r(table, "[render]", file, {"fps", "width", "height", "msaa", "background"});
+  const TableReader r(table, "[render]", file,
+                      {"fps", "width", "height", "antialias", "msaa", "background"});
   RenderSettings s;
   s.fps = r.integer("fps", 1, 1000).value_or(s.fps);
   // 16384 is the smallest GL_MAX_RENDERBUFFER_SIZE that GL 4.x allows a driver to offer.
@@ -330,6 +337,11 @@ RenderSettings read_render(const toml::table& table, const std::string& file) {
   // Samples per pixel, 0 = off. What a driver offers is known only at render time (llvmpipe:
   // up to 4), so this checks only for plausibility.
   s.msaa = r.integer("msaa", 0, 16).value_or(s.msaa);
+  // A scene that sets msaa alone asks for multisampling (SPEC's key); antialias says it outright.
+  if (const auto i = r.choice("antialias", kAntialiasNames))
+    s.antialias = static_cast<Antialias>(*i);  // kAntialiasNames is in enum order
+  else if (r.has("msaa"))
+    s.antialias = s.msaa > 1 ? Antialias::Msaa : Antialias::None;
   s.background = r.color("background").value_or(s.background);
   return s;
 }
@@ -517,7 +529,8 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
 
 }  // namespace
 
-Scene parse_scene(std::string_view text, const std::string& source_name) {
+Scene parse_scene(std::string_view text, const std::string& source_name,
+                  const TimeOverrides& overrides) {
   const toml::table root = parse_toml(text, source_name);
   reject_unknown_tables(root, source_name);
 
@@ -526,7 +539,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   scene.source_text = std::string(text);
   scene.stem = std::filesystem::path(source_name).stem().string();
   if (const toml::table* t = section(root, "simulation", source_name))
-    scene.simulation = read_simulation(*t, source_name);
+    scene.simulation = read_simulation(*t, source_name, overrides);
   if (const toml::table* t = section(root, "floor", source_name))
     scene.floor = read_floor(*t, source_name);
   if (const toml::table* t = section(root, "render", source_name))
@@ -540,7 +553,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name) {
   return scene;
 }
 
-Scene load_scene_file(const std::filesystem::path& path) {
+Scene load_scene_file(const std::filesystem::path& path, const TimeOverrides& overrides) {
   const auto cannot_read = [&](const std::string& reason) {
     fail({}, "cannot read scene file " + in_quotes(path.string()) + ": " + reason);
   };
@@ -552,7 +565,7 @@ Scene load_scene_file(const std::filesystem::path& path) {
   if (!in) cannot_read(errno ? std::generic_category().message(errno) : "cannot open it");
   const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   if (in.bad()) cannot_read("read failed");
-  return parse_scene(text, path.string());
+  return parse_scene(text, path.string(), overrides);
 }
 
 }  // namespace tumble

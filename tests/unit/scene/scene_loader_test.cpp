@@ -312,10 +312,10 @@ restitusion = 0.5
 }
 
 TEST(SceneLoader, UnknownKeyWithNothingCloseHasNoSuggestion) {
-  EXPECT_TRUE(FailsAt(with_box("[render]\n  antialiasing = 4\n"), 2, 3,
-                      R"(unknown key "antialiasing" in [render])"));
+  EXPECT_TRUE(FailsAt(with_box("[render]\n  supersampling = 4\n"), 2, 3,
+                      R"(unknown key "supersampling" in [render])"));
   try {
-    parse_scene(with_box("[render]\nantialiasing = 4\n"), "test.toml");
+    parse_scene(with_box("[render]\nsupersampling = 4\n"), "test.toml");
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()).find("did you mean"), std::string::npos) << e.what();
   }
@@ -701,6 +701,42 @@ TEST(SceneLoader, ErrorsInAFilePointIntoIt) {
     EXPECT_EQ(e.where().column, 9);
   }
   std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+Scene parse_render(const std::string& render_table) {
+  return parse_scene(render_table + R"(
+[[body]]
+shape = "box"
+size = [1.0, 1.0, 1.0]
+mass = 1.0
+)", "aa.toml");
+}
+
+TEST(SceneLoader, AntialiasDefaultsToFxaa) {
+  EXPECT_EQ(parse_render("").render.antialias, Antialias::Fxaa);
+}
+
+TEST(SceneLoader, MsaaAloneAsksForMultisampling) {
+  EXPECT_EQ(parse_render("[render]\nmsaa = 4\n").render.antialias, Antialias::Msaa);
+  EXPECT_EQ(parse_render("[render]\nmsaa = 0\n").render.antialias, Antialias::None);
+  EXPECT_EQ(parse_render("[render]\nantialias = \"none\"\nmsaa = 4\n").render.antialias,
+            Antialias::None);
+}
+
+TEST(SceneLoader, UnknownAntialiasIsRejectedWithTheChoices) {
+  try {
+    parse_render("[render]\nantialias = \"ssaa\"\n");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where().line, 2);
+    EXPECT_NE(std::string(e.what()).find("fxaa, msaa, none"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

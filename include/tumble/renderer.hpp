@@ -1,0 +1,50 @@
+#pragma once
+/// Draws a World into an off-screen framebuffer and reads the pixels back. Needs a current
+/// OpenGL 3.3 core context (EglContext). The look: scene colours, a 1 m checker floor that fades
+/// into the background, Blinn-Phong lighting from [light], planar shadows of the bodies on the
+/// floor (exact for a plane and one extra cheap pass, instead of a shadow map), FXAA or MSAA,
+/// sRGB output.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tumble/image.hpp"
+#include "tumble/scene.hpp"
+#include "tumble/world.hpp"
+
+namespace tumble {
+
+class Renderer {
+ public:
+  /// Compiles the embedded shaders and builds the framebuffers for scene.render's size and
+  /// msaa (clamped to what the driver offers). Throws tumble::Error (Environment) on GL failure.
+  explicit Renderer(const Scene& scene);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Renders the bodies of `world` (in scene order) as they are now.
+  void draw(const World& world);
+  /// The last drawn frame as RGBA rows, bottom-up as OpenGL returns them. Valid until the next call.
+  const std::vector<std::uint8_t>& read_rgba();
+  /// The last drawn frame as a top-down RGB image.
+  Image read_image();
+
+  int width() const;
+  int height() const;
+  int msaa_samples() const;  ///< samples actually used (0 = none)
+  Antialias antialias() const;  ///< the technique in use (msaa falls back to none if unsupported)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Camera maths, exposed for tests: view and projection of a camera looking at `target`.
+Eigen::Matrix4d look_at(const Vec3& eye, const Vec3& target, const Vec3& up);
+Eigen::Matrix4d perspective(double fov_y_deg, double aspect, double near, double far);
+
+}  // namespace tumble

@@ -1,0 +1,24 @@
+in vec3 v_world_position;
+
+uniform vec3 u_tile_light;   // sRGB, lit (the floor is flat: its lighting is one colour per tile)
+uniform vec3 u_tile_dark;    // sRGB, lit
+uniform vec3 u_background;   // sRGB
+uniform float u_fade_start;  // metres from the floor centre where it starts to fade away
+uniform float u_fade_end;
+
+out vec4 out_color;
+
+void main() {
+  // 1 m checker, box-filtered over the pixel's own footprint (fwidth) so it neither shimmers nor
+  // aliases: the integral of the square wave across the pixel, per axis.
+  vec2 p = v_world_position.xz;
+  vec2 w = max(fwidth(p), vec2(1e-4));
+  vec2 i = 2.0 * (abs(fract((p - 0.5 * w) * 0.5) - 0.5) - abs(fract((p + 0.5 * w) * 0.5) - 0.5)) / w;
+  float checker = 0.5 - 0.5 * i.x * i.y;
+  // Tile colours arrive lit and encoded; mixing them in sRGB is close enough for a filter
+  // footprint and saves two pow() per pixel on a CPU rasteriser.
+  vec3 color = mix(u_tile_light, u_tile_dark, checker);
+  // Fade into the background towards the edge, so the floor has no hard horizon.
+  float fade = smoothstep(u_fade_start, u_fade_end, length(p));
+  out_color = vec4(mix(color, u_background, fade), 1.0);
+}

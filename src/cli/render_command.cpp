@@ -1,0 +1,255 @@
+// tumble render: simulate, draw every frame at t_k = k/fps through EGL, and write clip.mp4,
+// frames/frame_NNNNN.png (--png), still_<T>.png (--still T) and run.json.
+//
+// Pipeline: this thread samples the world, draws and reads back; an encoder thread behind a
+// bounded queue does swscale + H.264 and PNG. On a GPU the encoder is the slow stage and the
+// overlap pays; on llvmpipe rendering already uses every core and the queue costs nothing.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <thread>
+
+#include "commands.hpp"
+#include "tumble/bounded_queue.hpp"
+#include "tumble/egl_context.hpp"
+#include "tumble/mp4_writer.hpp"
+#include "tumble/png.hpp"
+#include "tumble/renderer.hpp"
+#include "tumble/run_report.hpp"
+#include "tumble/sampler.hpp"
+#include "tumble/trajectory_writer.hpp"
+#include "tumble/world_builder.hpp"
+
+namespace tumble::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+[[noreturn]] void bad(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
+
+// GL rows are bottom-up RGBA; PNG wants top-down RGB: one pass does both.
+Image to_top_down_rgb(const std::vector<std::uint8_t>& rgba, int width, int height) {
+  Image image(width, height, 3);
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* in = rgba.data() + std::size_t(height - 1 - y) * width * 4;
+    std::uint8_t* out = image.row(y);
+    for (int x = 0; x < width; ++x) {
+      out[3 * x] = in[4 * x];
+      out[3 * x + 1] = in[4 * x + 1];
+      out[3 * x + 2] = in[4 * x + 2];
+    }
+  }
+  return image;
+}
+
+std::string frame_name(long k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05ld.png", k);
+  return name;
+}
+
+// A frame or a still, in time order.
+struct Event {
+  double t;
+  long frame;  // -1 for a still
+  std::size_t still;
+};
+
+class Progress {
+ public:
+  Progress(bool enabled, long total) : enabled_(enabled && isatty(STDERR_FILENO)), total_(total) {}
+  void update(long done) {
+    if (!enabled_) return;
+    const double elapsed = seconds_since(start_);
+    if (done != total_ && elapsed - last_ < 0.2) return;
+    last_ = elapsed;
+    const double fps = elapsed > 0.0 ? double(done) / elapsed : 0.0;
+    std::fprintf(stderr, "\rrender: frame %ld/%ld, %.1f fps, ETA %.1f s   ", done, total_, fps,
+                 fps > 0.0 ? double(total_ - done) / fps : 0.0);
+    if (done == total_) std::fputc('\n', stderr);
+  }
+
+ private:
+  bool enabled_;
+  long total_;
+  Clock::time_point start_ = Clock::now();
+  double last_ = -1.0;
+};
+
+}  // namespace
+
+void add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Simulate and render: clip.mp4, PNG frames, stills and run.json");
+  add_common_options(*cmd, o.common);
+  cmd->add_flag("--png", o.png, "Also write every frame as frames/frame_NNNNN.png");
+  cmd->add_flag("--no-mp4", o.no_mp4, "Do not write clip.mp4");
+  cmd->add_option("--still", o.stills, "Write still_<T>.png of the state at time T (repeatable)");
+  cmd->add_option("--crf", o.crf, "H.264 quality, 0 (lossless) to 51 (default 23)");
+  cmd->add_option("--msaa", o.msaa, "Anti-aliasing samples: 0 (off), 2, 4 (overrides the scene)");
+  cmd->add_option("--encoder", o.encoder,
+                  "H.264 encoder: auto (hardware where present, else libx264) or a name");
+  cmd->add_option("--egl-device", o.egl_device, "Render on EGL device N (see 'tumble info')");
+}
+
+int run_render(const RenderOptions& o) {
+  const auto start = Clock::now();
+  Scene scene = load_scene(o.common);
+  if (o.msaa) {
+    if (*o.msaa < 0 || *o.msaa > 16) bad("--msaa must be in [0, 16]");
+    scene.render.msaa = *o.msaa;
+  }
+  if (o.crf < 0 || o.crf > 51) bad("--crf must be in [0, 51]");
+  const int fps = scene.render.fps, width = scene.render.width, height = scene.render.height;
+  const double duration = scene.simulation.duration_s;
+  const long frames = std::lround(duration * fps);
+  const bool want_mp4 = !o.no_mp4;
+  if (frames < 1 && (want_mp4 || o.png))
+    bad("duration " + format_double(duration) + " s at " + std::to_string(fps) +
+        " fps gives no frame");
+  for (double t : o.stills)
+    if (!std::isfinite(t) || t < 0.0 || t > duration)
+      bad("--still " + format_double(t) + " is outside the run [0, " + format_double(duration) + "]");
+  if (!want_mp4 && !o.png && o.stills.empty())
+    bad("nothing to write: --no-mp4 needs --png or --still");
+  if (want_mp4 && (width % 2 || height % 2))
+    bad("H.264 (yuv420p) needs an even width and height; got " + std::to_string(width) + "x" +
+        std::to_string(height) + " (use an even --size, or --no-mp4 with --png)");
+  const WorldDef def = make_world_def(scene);
+
+  const fs::path dir = output_dir(o.common, scene);
+  if (o.png) make_output_dir(dir / "frames");
+  EglContext gl(o.egl_device.value_or(-1));
+  Renderer renderer(scene);
+  std::optional<Mp4Writer> mp4;
+  if (want_mp4) mp4.emplace(dir / "clip.mp4", Mp4Settings{width, height, fps, o.crf, o.encoder});
+
+  // The encoder thread: H.264 and PNG frames, fed through a bounded queue of frame buffers that
+  // are recycled, so memory is a few frames whatever the clip's length.
+  struct Job {
+    long frame;
+    std::vector<std::uint8_t> rgba;
+  };
+  BoundedQueue<Job> queue(3);
+  BoundedQueue<std::vector<std::uint8_t>> spare(4);
+  double encode_s = 0.0, png_s = 0.0;
+  std::exception_ptr worker_error;
+  std::thread worker([&] {
+    try {
+      while (auto job = queue.pop()) {
+        if (mp4) {
+          const auto t0 = Clock::now();
+          mp4->add_frame(job->rgba.data(), 4, std::ptrdiff_t(width) * 4, /*bottom_up=*/true);
+          encode_s += seconds_since(t0);
+        }
+        if (o.png) {
+          const auto t0 = Clock::now();
+          write_png(dir / "frames" / frame_name(job->frame), to_top_down_rgb(job->rgba, width, height));
+          png_s += seconds_since(t0);
+        }
+        spare.push(std::move(job->rgba));
+      }
+    } catch (...) {
+      worker_error = std::current_exception();
+      queue.close();  // the producer's next push fails and it stops
+    }
+  });
+  // Whatever happens below, the worker is stopped and joined before anything unwinds past it.
+  struct Join {
+    BoundedQueue<Job>& q;
+    std::thread& t;
+    ~Join() {
+      q.close();
+      if (t.joinable()) t.join();
+    }
+  } join{queue, worker};
+
+  std::vector<Event> events;
+  for (long k = 0; k < frames && (want_mp4 || o.png); ++k)
+    events.push_back({double(k) / fps, k, 0});
+  for (std::size_t i = 0; i < o.stills.size(); ++i) events.push_back({o.stills[i], -1, i});
+  std::stable_sort(events.begin(), events.end(),
+                   [](const Event& a, const Event& b) { return a.t < b.t; });
+
+  World world(def);
+  Sampler sampler(world);
+  double simulate_s = 0.0, render_s = 0.0, readback_s = 0.0;
+  std::vector<fs::path> still_paths;
+  Progress progress(!o.common.quiet, frames);
+  long frames_done = 0;
+  for (const Event& e : events) {
+    auto t0 = Clock::now();
+    const World snapshot = sampler.at(e.t);
+    simulate_s += seconds_since(t0);
+    t0 = Clock::now();
+    renderer.draw(snapshot);
+    render_s += seconds_since(t0);
+    if (e.frame < 0) {
+      t0 = Clock::now();
+      const fs::path path = dir / ("still_" + format_double(o.stills[e.still]) + ".png");
+      write_png(path, renderer.read_image());
+      png_s += seconds_since(t0);
+      still_paths.push_back(path);
+      continue;
+    }
+    t0 = Clock::now();
+    const std::vector<std::uint8_t>& pixels = renderer.read_rgba();
+    std::vector<std::uint8_t> buffer;
+    if (frames_done >= 4) buffer = spare.pop().value_or(std::vector<std::uint8_t>{});
+    buffer.assign(pixels.begin(), pixels.end());
+    readback_s += seconds_since(t0);
+    if (!queue.push(Job{e.frame, std::move(buffer)})) break;  // the worker failed
+    progress.update(++frames_done);
+  }
+  queue.close();
+  worker.join();
+  if (worker_error) std::rethrow_exception(worker_error);
+  if (mp4) {
+    const auto t0 = Clock::now();
+    mp4->finish();
+    encode_s += seconds_since(t0);
+  }
+
+  RunReport report;
+  report.command = "render";
+  report.scene = &scene;
+  report.steps = step_count_for(duration, def.dt_s);  // the last may be taken part-way
+  report.samples = frames;
+  report.sample_rate_hz = fps;
+  report.gl_vendor = gl.info().gl_vendor;
+  report.gl_renderer = gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " +
+                       gl.info().platform + ")";
+  report.encoder = mp4 ? mp4->encoder_name() : "";
+  report.times.simulate_s = simulate_s;
+  report.times.render_s = render_s;
+  report.times.readback_s = readback_s;
+  if (mp4) report.times.encode_s = encode_s;
+  if (o.png || !still_paths.empty()) report.times.png_s = png_s;
+  report.energy_start_J = World(def).total_energy();
+  report.energy_end_J = sampler.at(duration).total_energy();
+  report.contact = world.contact_stats();
+  if (mp4) report.outputs.push_back(dir / "clip.mp4");
+  if (o.png)
+    for (long k = 0; k < frames; ++k) report.outputs.push_back(dir / "frames" / frame_name(k));
+  report.outputs.insert(report.outputs.end(), still_paths.begin(), still_paths.end());
+  report.world = &world;
+  report.times.total_s = seconds_since(start);
+  write_run_report(dir / "run.json", report);
+  if (!o.common.quiet) {
+    std::printf("tumble: rendered %ld frames (%dx%d, %d fps) on %s in %.2f s into %s\n", frames,
+                width, height, fps, gl.info().gl_renderer.c_str(), report.times.total_s,
+                dir.c_str());
+  }
+  return 0;
+}
+
+}  // namespace tumble::cli
