@@ -26,6 +26,7 @@ struct RunReport {
   double sample_rate_hz = 0.0;
   bool every_step = false;
   std::string gl_vendor, gl_renderer, encoder;  ///< empty when nothing was rendered/encoded
+  std::string antialias_used;                   ///< what the renderer did ("fxaa", "msaa 4x", …)
   StageTimes times;
   double energy_start_J = 0.0, energy_end_J = 0.0;
   ContactStats contact;

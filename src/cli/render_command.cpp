@@ -229,6 +229,10 @@ int run_render(const RenderOptions& o) {
   report.gl_renderer = gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " +
                        gl.info().platform + ")";
   report.encoder = mp4 ? mp4->encoder_name() : "";
+  report.antialias_used =
+      renderer.antialias() == Antialias::Msaa
+          ? "msaa " + std::to_string(renderer.msaa_samples()) + "x"
+          : std::string(kAntialiasNames[static_cast<int>(renderer.antialias())]);
   report.times.simulate_s = simulate_s;
   report.times.render_s = render_s;
   report.times.readback_s = readback_s;

@@ -31,6 +31,7 @@ ordered_json settings_json(const Scene& s) {
   j["render"] = {{"fps", s.render.fps},
                  {"width", s.render.width},
                  {"height", s.render.height},
+                 {"antialias", kAntialiasNames[static_cast<int>(s.render.antialias)]},
                  {"msaa", s.render.msaa},
                  {"background", to_string(s.render.background)}};
   j["camera"] = {{"position", vec(s.camera.position)},
@@ -59,7 +60,9 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
                  {"every_step", r.every_step}};
   j["gl"] = r.gl_renderer.empty()
                 ? ordered_json()
-                : ordered_json{{"vendor", r.gl_vendor}, {"renderer", r.gl_renderer}};
+                : ordered_json{{"vendor", r.gl_vendor},
+                               {"renderer", r.gl_renderer},
+                               {"antialias", r.antialias_used}};
   j["encoder"] = r.encoder.empty() ? ordered_json() : ordered_json(r.encoder);
   ordered_json times;
   auto stage = [&](const char* name, const std::optional<double>& s) {
