@@ -28,8 +28,9 @@ class Renderer {
 
   /// Renders the bodies of `world` (in scene order) as they are now.
   void draw(const World& world);
-  /// The last drawn frame as RGBA rows, bottom-up as OpenGL returns them. Valid until the next call.
-  const std::vector<std::uint8_t>& read_rgba();
+  /// Reads the last drawn frame into `rgba` (resized) as RGBA rows, bottom-up as OpenGL returns
+  /// them: straight into the caller's buffer, no copy.
+  void read_rgba(std::vector<std::uint8_t>& rgba);
   /// The last drawn frame as a top-down RGB image.
   Image read_image();
 

@@ -161,6 +161,7 @@ int run_render(const RenderOptions& o) {
     } catch (...) {
       worker_error = std::current_exception();
       queue.close();  // the producer's next push fails and it stops
+      spare.close();  // and it never waits for a buffer that will not come back
     }
   });
   // Whatever happens below, the worker is stopped and joined before anything unwinds past it.
@@ -202,10 +203,10 @@ int run_render(const RenderOptions& o) {
       continue;
     }
     t0 = Clock::now();
-    const std::vector<std::uint8_t>& pixels = renderer.read_rgba();
+    // Read straight into a recycled buffer: after the first few frames, no allocation.
     std::vector<std::uint8_t> buffer;
     if (frames_done >= 4) buffer = spare.pop().value_or(std::vector<std::uint8_t>{});
-    buffer.assign(pixels.begin(), pixels.end());
+    renderer.read_rgba(buffer);
     readback_s += seconds_since(t0);
     if (!queue.push(Job{e.frame, std::move(buffer)})) break;  // the worker failed
     progress.update(++frames_done);

@@ -192,7 +192,6 @@ struct Renderer::Impl {
   GLuint ms_fbo = 0, ms_color = 0, ms_depth = 0;    // multisampled target (msaa)
   GLuint tex_fbo = 0, tex_color = 0, tex_depth = 0; // scene as a texture (fxaa reads it)
   GLuint fbo = 0, color = 0, depth = 0;             // single-sample target read back
-  std::vector<std::uint8_t> rgba;
 
   explicit Impl(const Scene& s)
       : scene(s), width(s.render.width), height(s.render.height), antialias(s.render.antialias) {}
@@ -266,7 +265,6 @@ struct Renderer::Impl {
     cube = make_cube();
     sphere = make_sphere();
     floor = make_floor_quad();
-    rgba.resize(std::size_t(width) * height * 4);
     if (glGetError() != GL_NO_ERROR) gl_fail("setting up the renderer failed");
   }
 
@@ -456,26 +454,27 @@ struct Renderer::Impl {
     glEnable(GL_DEPTH_TEST);
   }
 
-  const std::vector<std::uint8_t>& read_rgba() {
+  void read_rgba(std::vector<std::uint8_t>& out) {
+    out.resize(std::size_t(width) * height * 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, out.data());
     if (glGetError() != GL_NO_ERROR) gl_fail("reading the frame back failed");
-    return rgba;
   }
 };
 
 Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) { impl_->build(); }
 Renderer::~Renderer() = default;
 void Renderer::draw(const World& world) { impl_->draw(world); }
-const std::vector<std::uint8_t>& Renderer::read_rgba() { return impl_->read_rgba(); }
+void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) { impl_->read_rgba(rgba); }
 int Renderer::width() const { return impl_->width; }
 int Renderer::height() const { return impl_->height; }
 int Renderer::msaa_samples() const { return impl_->samples; }
 Antialias Renderer::antialias() const { return impl_->antialias; }
 
 Image Renderer::read_image() {
-  const std::vector<std::uint8_t>& src = read_rgba();
+  std::vector<std::uint8_t> src;
+  read_rgba(src);
   Image image(width(), height(), 3);
   // One flip, while dropping alpha: GL rows are bottom-up.
   for (int y = 0; y < height(); ++y) {
