@@ -54,4 +54,16 @@ int run_render(const RenderOptions& o);
 void add_info_command(CLI::App& app);
 int run_info();
 
+struct DiffOptions {
+  std::string expected, actual;  // two PNGs, two folders of PNGs or two videos
+  int max_delta = 0;
+  double max_fraction = 0.0;
+  std::optional<double> min_psnr_db;
+  std::string diff_out;  // empty: no diff images
+};
+void add_diff_command(CLI::App& app, DiffOptions& o);
+/// 0 within tolerance, 1 beyond it; throws tumble::Error (BadInput) for a missing or undecodable
+/// input or a bad option, (Environment) when a diff image cannot be written.
+int run_diff(const DiffOptions& o);
+
 }  // namespace tumble::cli

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   cli::SimulateOptions simulate;
   cli::add_simulate_command(app, simulate);
   cli::add_info_command(app);
+  cli::DiffOptions diff;
+  cli::add_diff_command(app, diff);
 
   try {
     app.parse(argc, argv);
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return cli::run_render(render);
     if (app.got_subcommand("simulate")) return cli::run_simulate(simulate);
     if (app.got_subcommand("info")) return cli::run_info();
+    if (app.got_subcommand("diff")) return cli::run_diff(diff);
   } catch (const Error& e) {
     std::fprintf(stderr, "tumble: error: %s\n", e.describe().c_str());
     return e.exit_code();
