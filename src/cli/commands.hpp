@@ -45,6 +45,7 @@ struct RenderOptions {
   std::vector<double> stills;
   int crf = 23;
   std::optional<int> msaa;
+  std::string antialias;  // empty: the scene's
   std::string encoder = "auto";
   std::optional<int> egl_device;
 };

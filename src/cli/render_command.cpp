@@ -95,7 +95,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_flag("--no-mp4", o.no_mp4, "Do not write clip.mp4");
   cmd->add_option("--still", o.stills, "Write still_<T>.png of the state at time T (repeatable)");
   cmd->add_option("--crf", o.crf, "H.264 quality, 0 (lossless) to 51 (default 23)");
-  cmd->add_option("--msaa", o.msaa, "Anti-aliasing samples: 0 (off), 2, 4 (overrides the scene)");
+  cmd->add_option("--antialias", o.antialias, "fxaa (default), msaa or none (overrides the scene)");
+  cmd->add_option("--msaa", o.msaa, "Multisample with N samples: 0 (off), 2, 4 (overrides the scene)");
   cmd->add_option("--encoder", o.encoder,
                   "H.264 encoder: auto (hardware where present, else libx264) or a name");
   cmd->add_option("--egl-device", o.egl_device, "Render on EGL device N (see 'tumble info')");
@@ -105,8 +106,16 @@ int run_render(const RenderOptions& o) {
   const auto start = Clock::now();
   Scene scene = load_scene(o.common);
   if (o.msaa) {
+    // As in a scene file: asking for samples asks for multisampling (0 or 1: none).
     if (*o.msaa < 0 || *o.msaa > 16) bad("--msaa must be in [0, 16]");
     scene.render.msaa = *o.msaa;
+    scene.render.antialias = *o.msaa > 1 ? Antialias::Msaa : Antialias::None;
+  }
+  if (!o.antialias.empty()) {
+    const auto* it = std::find(kAntialiasNames.begin(), kAntialiasNames.end(), o.antialias);
+    if (it == kAntialiasNames.end())
+      bad("unknown --antialias \"" + o.antialias + "\" (expected one of: fxaa, msaa, none)");
+    scene.render.antialias = static_cast<Antialias>(it - kAntialiasNames.begin());
   }
   if (o.crf < 0 || o.crf > 51) bad("--crf must be in [0, 51]");
   const int fps = scene.render.fps, width = scene.render.width, height = scene.render.height;

@@ -57,7 +57,7 @@ bool have_ffmpeg_tools() {
 }
 
 #define REQUIRE_FFMPEG_TOOLS() \
-  if (!have_ffmpeg_tools()) GTEST_SKIP() << "ffprobe/ffmpeg tools are not installed"
+  if (!have_ffmpeg_tools()) FAIL() << "ffprobe/ffmpeg (installed by scripts/setup) are missing"
 
 // Frame k of a moving scene: a diagonal gradient that slides by 3 pixels per frame and an orange
 // box that crosses the picture, so consecutive frames differ and motion search has work to do.
