@@ -12,6 +12,15 @@
 
 namespace tumble::cli {
 
+/// A run stopped by SIGINT/SIGTERM; main() exits with 128 + the signal, like a shell.
+struct Interrupted {
+  int signal;
+};
+void install_interrupt_handlers();
+bool interrupted();
+/// Throws Interrupted once a signal arrived; the loops call it once per frame or sample.
+void throw_if_interrupted();
+
 struct CommonOptions {
   std::string scene_path;  // empty: the built-in default scene
   std::string out_dir;     // empty: out/<scene-stem>/

@@ -34,11 +34,15 @@ int main(int argc, char** argv) {
     return static_cast<int>(ErrorKind::BadInput);
   }
 
+  cli::install_interrupt_handlers();
   try {
     if (app.got_subcommand("render")) return cli::run_render(render);
     if (app.got_subcommand("simulate")) return cli::run_simulate(simulate);
     if (app.got_subcommand("info")) return cli::run_info();
     if (app.got_subcommand("diff")) return cli::run_diff(diff);
+  } catch (const cli::Interrupted& i) {
+    std::fprintf(stderr, "tumble: interrupted; outputs left as they were\n");
+    return 128 + i.signal;
   } catch (const Error& e) {
     std::fprintf(stderr, "tumble: error: %s\n", e.describe().c_str());
     return e.exit_code();

@@ -118,6 +118,7 @@ int run_render(const RenderOptions& o) {
     scene.render.antialias = static_cast<Antialias>(it - kAntialiasNames.begin());
   }
   if (o.crf < 0 || o.crf > 51) bad("--crf must be in [0, 51]");
+  if (o.egl_device && *o.egl_device < 0) bad("--egl-device must be a device number >= 0");
   const int fps = scene.render.fps, width = scene.render.width, height = scene.render.height;
   const double duration = scene.simulation.duration_s;
   const long frames = std::lround(duration * fps);
@@ -183,20 +184,32 @@ int run_render(const RenderOptions& o) {
     }
   } join{queue, worker};
 
-  std::vector<Event> events;
-  for (long k = 0; k < frames && (want_mp4 || o.png); ++k)
-    events.push_back({double(k) / fps, k, 0});
-  for (std::size_t i = 0; i < o.stills.size(); ++i) events.push_back({o.stills[i], -1, i});
-  std::stable_sort(events.begin(), events.end(),
-                   [](const Event& a, const Event& b) { return a.t < b.t; });
+  // Frames k/fps and stills merged in time order on the fly (the sampler only goes forward);
+  // nothing here grows with the clip's length. A still at a frame's time comes first.
+  std::vector<double> stills = o.stills;
+  for (double& t : stills) t += 0.0;  // -0 names the same still as 0
+  std::sort(stills.begin(), stills.end());
+  stills.erase(std::unique(stills.begin(), stills.end()), stills.end());
+  const long frames_to_draw = want_mp4 || o.png ? frames : 0;
+  long next_frame = 0;
+  std::size_t next_still = 0;
+  auto next_event = [&]() -> std::optional<Event> {
+    const bool frame_left = next_frame < frames_to_draw, still_left = next_still < stills.size();
+    if (!frame_left && !still_left) return std::nullopt;
+    const double frame_t = frame_left ? double(next_frame) / fps : INFINITY;
+    if (still_left && stills[next_still] <= frame_t) return Event{stills[next_still], -1, next_still++};
+    return Event{frame_t, next_frame++, 0};
+  };
 
   World world(def);
   Sampler sampler(world);
   double simulate_s = 0.0, render_s = 0.0, readback_s = 0.0;
   std::vector<fs::path> still_paths;
-  Progress progress(!o.common.quiet, frames);
+  Progress progress(!o.common.quiet, frames_to_draw);
   long frames_done = 0;
-  for (const Event& e : events) {
+  while (const std::optional<Event> next = next_event()) {
+    const Event& e = *next;
+    throw_if_interrupted();
     auto t0 = Clock::now();
     const World snapshot = sampler.at(e.t);
     simulate_s += seconds_since(t0);
@@ -205,7 +218,7 @@ int run_render(const RenderOptions& o) {
     render_s += seconds_since(t0);
     if (e.frame < 0) {
       t0 = Clock::now();
-      const fs::path path = dir / ("still_" + format_double(o.stills[e.still]) + ".png");
+      const fs::path path = dir / ("still_" + format_double(stills[e.still]) + ".png");
       write_png(path, renderer.read_image());
       png_s += seconds_since(t0);
       still_paths.push_back(path);
@@ -233,7 +246,7 @@ int run_render(const RenderOptions& o) {
   report.command = "render";
   report.scene = &scene;
   report.steps = step_count_for(duration, def.dt_s);  // the last may be taken part-way
-  report.samples = frames;
+  report.samples = frames_to_draw;
   report.sample_rate_hz = fps;
   report.gl_vendor = gl.info().gl_vendor;
   report.gl_renderer = gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " +
@@ -253,15 +266,18 @@ int run_render(const RenderOptions& o) {
   report.contact = world.contact_stats();
   if (mp4) report.outputs.push_back(dir / "clip.mp4");
   if (o.png)
-    for (long k = 0; k < frames; ++k) report.outputs.push_back(dir / "frames" / frame_name(k));
+    for (long k = 0; k < frames_to_draw; ++k)
+      report.outputs.push_back(dir / "frames" / frame_name(k));
   report.outputs.insert(report.outputs.end(), still_paths.begin(), still_paths.end());
   report.world = &world;
   report.times.total_s = seconds_since(start);
   write_run_report(dir / "run.json", report);
   if (!o.common.quiet) {
-    std::printf("tumble: rendered %ld frames (%dx%d, %d fps) on %s in %.2f s into %s\n", frames,
-                width, height, fps, gl.info().gl_renderer.c_str(), report.times.total_s,
-                dir.c_str());
+    const std::string stills_text =
+        still_paths.empty() ? "" : " and " + std::to_string(still_paths.size()) + " still(s)";
+    std::printf("tumble: rendered %ld frames (%dx%d, %d fps)%s on %s in %.2f s into %s\n",
+                frames_to_draw, width, height, fps, stills_text.c_str(),
+                gl.info().gl_renderer.c_str(), report.times.total_s, dir.c_str());
   }
   return 0;
 }

@@ -76,6 +76,7 @@ int run_simulate(const SimulateOptions& o) {
     const double t = k == samples - 1 ? duration
                      : o.every_step   ? static_cast<double>(k) * dt
                                       : static_cast<double>(k) / rate;
+    throw_if_interrupted();
     const World snapshot = sampler.at(t);
     csv.write(t, snapshot);
     if (k == 0) energy_start = snapshot.total_energy();
