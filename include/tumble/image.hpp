@@ -3,6 +3,7 @@
 /// renderer hands to sinks (after its one flip), what `diff` compares.
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace tumble {
@@ -19,5 +20,17 @@ struct Image {
   std::uint8_t* row(int y) { return pixels.data() + std::size_t(y) * stride(); }
   const std::uint8_t* row(int y) const { return pixels.data() + std::size_t(y) * stride(); }
 };
+
+/// A top-down RGB image from RGBA rows bottom-up, as glReadPixels returns them: the one flip and
+/// the dropped alpha in a single pass.
+inline Image image_from_gl_rgba(const std::uint8_t* rgba, int width, int height) {
+  Image image(width, height, 3);
+  for (int y = 0; y < height; ++y) {
+    const std::uint8_t* in = rgba + std::size_t(height - 1 - y) * width * 4;
+    std::uint8_t* out = image.row(y);
+    for (int x = 0; x < width; ++x) std::memcpy(out + 3 * x, in + 4 * x, 3);
+  }
+  return image;
+}
 
 }  // namespace tumble

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "tumble/atomic_file.hpp"
 #include "tumble/error.hpp"
 #include "tumble/image_diff.hpp"
@@ -77,12 +78,6 @@ std::set<std::string> png_names(const fs::path& dir) {
       names.insert(it->path().filename().string());
   if (ec) bad("cannot list the folder " + quoted(dir) + ": " + ec.message());
   return names;
-}
-
-std::string frame_name(long k) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%05ld", k);
-  return name;
 }
 
 // Counts the pairs, prints one line per pair and writes the diff pictures.
@@ -243,13 +238,13 @@ int diff_videos(Comparison& c, const fs::path& expected, const fs::path& actual)
       if (expected_frames == actual_frames) break;
       const long extra = std::abs(expected_frames - actual_frames);
       const fs::path& longer = expected_frames > actual_frames ? expected : actual;
-      c.unmatched(frame_name(frames) + (extra > 1 ? " to " + frame_name(frames + extra - 1) : "") +
+      c.unmatched(frame_stem(frames) + (extra > 1 ? " to " + frame_stem(frames + extra - 1) : "") +
                       ": only in " + quoted(longer),
                   extra);
       return c.verdict("frames", "frame counts differ: " + std::to_string(expected_frames) +
                                      " expected, " + std::to_string(actual_frames) + " actual");
     }
-    const std::string name = frame_name(frames);
+    const std::string name = frame_stem(frames);
     c.compare(name, e, a, diff_out.empty() ? fs::path() : diff_out / (name + ".png"));
   }
   if (frames == 0)

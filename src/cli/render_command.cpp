@@ -4,16 +4,14 @@
 // Pipeline: this thread samples the world, draws and reads back; an encoder thread behind a
 // bounded queue does swscale + H.264 and PNG. On a GPU the encoder is the slow stage and the
 // overlap pays; on llvmpipe rendering already uses every core and the queue costs nothing.
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <thread>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "tumble/bounded_queue.hpp"
 #include "tumble/egl_context.hpp"
 #include "tumble/mp4_writer.hpp"
@@ -27,62 +25,17 @@
 namespace tumble::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 [[noreturn]] void bad(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
 
-// GL rows are bottom-up RGBA; PNG wants top-down RGB: one pass does both.
-Image to_top_down_rgb(const std::vector<std::uint8_t>& rgba, int width, int height) {
-  Image image(width, height, 3);
-  for (int y = 0; y < height; ++y) {
-    const std::uint8_t* in = rgba.data() + std::size_t(height - 1 - y) * width * 4;
-    std::uint8_t* out = image.row(y);
-    for (int x = 0; x < width; ++x) {
-      out[3 * x] = in[4 * x];
-      out[3 * x + 1] = in[4 * x + 1];
-      out[3 * x + 2] = in[4 * x + 2];
-    }
-  }
-  return image;
-}
-
-std::string frame_name(long k) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%05ld.png", k);
-  return name;
-}
+std::string frame_name(long k) { return frame_stem(k) + ".png"; }
 
 // A frame or a still, in time order.
 struct Event {
   double t;
   long frame;  // -1 for a still
   std::size_t still;
-};
-
-class Progress {
- public:
-  Progress(bool enabled, long total) : enabled_(enabled && isatty(STDERR_FILENO)), total_(total) {}
-  void update(long done) {
-    if (!enabled_) return;
-    const double elapsed = seconds_since(start_);
-    if (done != total_ && elapsed - last_ < 0.2) return;
-    last_ = elapsed;
-    const double fps = elapsed > 0.0 ? double(done) / elapsed : 0.0;
-    std::fprintf(stderr, "\rrender: frame %ld/%ld, %.1f fps, ETA %.1f s   ", done, total_, fps,
-                 fps > 0.0 ? double(total_ - done) / fps : 0.0);
-    if (done == total_) std::fputc('\n', stderr);
-  }
-
- private:
-  bool enabled_;
-  long total_;
-  Clock::time_point start_ = Clock::now();
-  double last_ = -1.0;
 };
 
 }  // namespace
@@ -163,7 +116,7 @@ int run_render(const RenderOptions& o) {
         }
         if (o.png) {
           const auto t0 = Clock::now();
-          write_png(dir / "frames" / frame_name(job->frame), to_top_down_rgb(job->rgba, width, height));
+          write_png(dir / "frames" / frame_name(job->frame), image_from_gl_rgba(job->rgba.data(), width, height));
           png_s += seconds_since(t0);
         }
         spare.push(std::move(job->rgba));
@@ -205,7 +158,7 @@ int run_render(const RenderOptions& o) {
   Sampler sampler(world);
   double simulate_s = 0.0, render_s = 0.0, readback_s = 0.0;
   std::vector<fs::path> still_paths;
-  Progress progress(!o.common.quiet, frames_to_draw);
+  Progress progress(!o.common.quiet, frames_to_draw, "render", "frames");
   long frames_done = 0;
   while (const std::optional<Event> next = next_event()) {
     const Event& e = *next;

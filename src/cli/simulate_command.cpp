@@ -1,47 +1,15 @@
 // tumble simulate: the trajectory, sampled at k/rate (or every step), and run.json. No GL.
-#include <unistd.h>
-
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "tumble/run_report.hpp"
 #include "tumble/sampler.hpp"
 #include "tumble/trajectory_writer.hpp"
 #include "tumble/world_builder.hpp"
 
 namespace tumble::cli {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// A one-line progress display on stderr, only when it is a terminal (never in logs or CI).
-class Progress {
- public:
-  Progress(bool enabled, long total) : enabled_(enabled && isatty(STDERR_FILENO)), total_(total) {}
-  void update(long done) {
-    if (!enabled_ || (done % 64 != 0 && done != total_)) return;
-    const double elapsed = seconds_since(start_);
-    const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
-    const double eta = rate > 0.0 ? static_cast<double>(total_ - done) / rate : 0.0;
-    std::fprintf(stderr, "\rsimulate: %ld/%ld samples, %.0f/s, ETA %.1f s   ", done, total_, rate,
-                 eta);
-    if (done == total_) std::fputc('\n', stderr);
-  }
-
- private:
-  bool enabled_;
-  long total_;
-  Clock::time_point start_ = Clock::now();
-};
-
-}  // namespace
-
 void add_simulate_command(CLI::App& app, SimulateOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Simulate only (no GL): trajectory.csv and run.json in the output folder");
@@ -68,7 +36,7 @@ int run_simulate(const SimulateOptions& o) {
   World world(def);
   Sampler sampler(world);
   TrajectoryWriter csv(dir / "trajectory.csv");
-  Progress progress(!o.common.quiet, samples);
+  Progress progress(!o.common.quiet, samples, "simulate", "samples");
   double energy_start = 0.0, energy_end = 0.0;
   for (long k = 0; k < samples; ++k) {
     // Every step boundary n·dt, or k/rate; the last sample is the end of the run exactly, so

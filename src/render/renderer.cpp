@@ -473,16 +473,9 @@ int Renderer::msaa_samples() const { return impl_->samples; }
 Antialias Renderer::antialias() const { return impl_->antialias; }
 
 Image Renderer::read_image() {
-  std::vector<std::uint8_t> src;
-  read_rgba(src);
-  Image image(width(), height(), 3);
-  // One flip, while dropping alpha: GL rows are bottom-up.
-  for (int y = 0; y < height(); ++y) {
-    const std::uint8_t* in = src.data() + std::size_t(height() - 1 - y) * width() * 4;
-    std::uint8_t* out = image.row(y);
-    for (int x = 0; x < width(); ++x) std::memcpy(out + 3 * x, in + 4 * x, 3);
-  }
-  return image;
+  std::vector<std::uint8_t> rgba;
+  read_rgba(rgba);
+  return image_from_gl_rgba(rgba.data(), width(), height());
 }
 
 }  // namespace tumble
