@@ -33,12 +33,17 @@ struct SwsFree {
 struct BufferUnref {
   void operator()(AVBufferRef* b) const { av_buffer_unref(&b); }
 };
-/// Closes the output file (if open) before freeing the muxer context.
+/// Closes the output file (if open) before freeing the muxer (output) context.
 struct FormatContextFree {
   void operator()(AVFormatContext* f) const {
     if (f->pb && !(f->oformat->flags & AVFMT_NOFILE)) avio_closep(&f->pb);
     avformat_free_context(f);
   }
+};
+
+/// An opened input (demuxer) is closed with avformat_close_input.
+struct InputFormatClose {
+  void operator()(AVFormatContext* f) const { avformat_close_input(&f); }
 };
 
 using CodecContextPtr = std::unique_ptr<AVCodecContext, CodecContextFree>;
@@ -47,6 +52,12 @@ using PacketPtr = std::unique_ptr<AVPacket, PacketFree>;
 using SwsPtr = std::unique_ptr<SwsContext, SwsFree>;
 using BufferPtr = std::unique_ptr<AVBufferRef, BufferUnref>;
 using FormatContextPtr = std::unique_ptr<AVFormatContext, FormatContextFree>;
+using InputFormatPtr = std::unique_ptr<AVFormatContext, InputFormatClose>;
+
+/// Routes FFmpeg's log away from stderr (tumble's stderr carries only its own messages). Errors a
+/// codec logs while it is being opened (its `opaque` pointing at a std::string) are kept there, as
+/// the reason reported when it fails to open. Process-wide; idempotent.
+void silence_ffmpeg_log();
 
 /// An AVDictionary of options; avcodec_open2 and avformat_write_header take what they know out of
 /// it and leave the rest, which is freed here.

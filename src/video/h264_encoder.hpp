@@ -35,8 +35,4 @@ H264Encoder open_h264_encoder(const Mp4Settings& settings, bool global_header);
 /// Names of the H.264 encoders in this FFmpeg build that can produce 4:2:0 8-bit video.
 std::vector<std::string> h264_encoder_names();
 
-/// Routes FFmpeg's log away from stderr (tumble's stderr carries only its own messages). Errors a
-/// codec logs while it is being opened are kept as the reason reported when it fails to open.
-void silence_ffmpeg_log();
-
 }  // namespace tumble

@@ -7,19 +7,12 @@ extern "C" {
 #include <string>
 
 #include "ffmpeg_handles.hpp"
-#include "h264_encoder.hpp"  // silence_ffmpeg_log
 #include "tumble/error.hpp"
 
 namespace tumble {
 namespace {
 
 namespace fs = std::filesystem;
-
-// An opened input is closed with avformat_close_input (FormatContextFree is the output side's).
-struct InputFormatClose {
-  void operator()(AVFormatContext* f) const { avformat_close_input(&f); }
-};
-using InputFormatPtr = std::unique_ptr<AVFormatContext, InputFormatClose>;
 
 // swscale's name for the Y'CbCr matrix a stream is tagged with. An untagged stream (or a matrix
 // swscale lacks) is decoded as the ffmpeg tool decodes it, with BT.601: untagged streams mostly
