@@ -686,10 +686,7 @@ TEST(Render, MsaaInTheSceneChangesThePixels) {
 
 TEST(Render, EveryExampleSceneRenders) {
   const TestDir dir;
-  std::vector<fs::path> scenes;
-  for (const auto& entry : fs::directory_iterator(source_dir() / "assets/scenes"))
-    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
-  std::sort(scenes.begin(), scenes.end());
+  const std::vector<fs::path> scenes = example_scenes();
   ASSERT_GE(scenes.size(), 5u);
   for (const fs::path& scene : scenes) {
     SCOPED_TRACE(scene.string());

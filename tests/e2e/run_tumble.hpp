@@ -239,4 +239,13 @@ inline std::string system_sha256(const fs::path& file) {
   return r.out.substr(0, 64);
 }
 
+/// Every example scene in assets/scenes, sorted by name.
+inline std::vector<fs::path> example_scenes() {
+  std::vector<fs::path> scenes;
+  for (const auto& entry : fs::directory_iterator(source_dir() / "assets/scenes"))
+    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
 }  // namespace tumble_e2e
