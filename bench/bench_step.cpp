@@ -26,8 +26,8 @@ void run(benchmark::State& state, World world) {
     world.step();
     benchmark::DoNotOptimize(world.bodies()[0].state);
   }
-  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                 benchmark::Counter::kIsRate);
+  state.counters["steps/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.SetLabel(std::string(to_string(world.def().integrator)));
 }
 

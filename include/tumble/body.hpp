@@ -28,8 +28,8 @@ struct BodyDef {
   bool particle = false;
   double mass_kg = 1.0;
   Vec3 inertia_body = Vec3::Ones();  ///< principal moments, kg·m² (unused for a particle)
-  std::vector<Vec3> vertices;  ///< contact points in the body frame (box: its 8 corners)
-  double restitution = 0.5;    ///< against the floor, in [0, 1]
+  std::vector<Vec3> vertices;        ///< contact points in the body frame (box: its 8 corners)
+  double restitution = 0.5;          ///< against the floor, in [0, 1]
   Vec3 position = Vec3::Zero();
   Quat orientation = Quat::Identity();
   Vec3 velocity = Vec3::Zero();

@@ -20,8 +20,12 @@ inline constexpr std::array<std::string_view, 4> kIntegratorNames = {"euler", "s
                                                                      "midpoint", "rk4"};
 inline constexpr std::array<std::string_view, 2> kRotationNames = {"quaternion", "matrix"};
 
-constexpr std::string_view to_string(Integrator i) { return kIntegratorNames[static_cast<int>(i)]; }
-constexpr std::string_view to_string(RotationRep r) { return kRotationNames[static_cast<int>(r)]; }
+constexpr std::string_view to_string(Integrator i) {
+  return kIntegratorNames[static_cast<int>(i)];
+}
+constexpr std::string_view to_string(RotationRep r) {
+  return kRotationNames[static_cast<int>(r)];
+}
 
 constexpr std::optional<Integrator> parse_integrator(std::string_view name) {
   for (std::size_t i = 0; i < kIntegratorNames.size(); ++i)
@@ -37,10 +41,14 @@ constexpr std::optional<RotationRep> parse_rotation(std::string_view name) {
 /// Formal order of accuracy of an integrator (global error ~ dt^order).
 constexpr int order_of(Integrator i) {
   switch (i) {
-    case Integrator::Euler: return 1;
-    case Integrator::SymplecticEuler: return 1;
-    case Integrator::Midpoint: return 2;
-    case Integrator::Rk4: return 4;
+    case Integrator::Euler:
+      return 1;
+    case Integrator::SymplecticEuler:
+      return 1;
+    case Integrator::Midpoint:
+      return 2;
+    case Integrator::Rk4:
+      return 4;
   }
   return 0;
 }

@@ -21,6 +21,8 @@ inline Mat3 star(const Vec3& a) {
 }
 
 constexpr double kPi = 3.14159265358979323846;
-inline double radians(double degrees) { return degrees * (kPi / 180.0); }
+inline double radians(double degrees) {
+  return degrees * (kPi / 180.0);
+}
 
 }  // namespace tumble

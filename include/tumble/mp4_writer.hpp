@@ -15,10 +15,10 @@
 namespace tumble {
 
 struct Mp4Settings {
-  int width = 1280;   ///< even (yuv420p); odd sizes are a BadInput error
-  int height = 720;   ///< even
+  int width = 1280;  ///< even (yuv420p); odd sizes are a BadInput error
+  int height = 720;  ///< even
   int fps = 60;
-  int crf = 23;       ///< libx264 constant rate factor, 0–51
+  int crf = 23;                  ///< libx264 constant rate factor, 0–51
   std::string encoder = "auto";  ///< "auto": a hardware H.264 encoder that opens, else libx264
 };
 

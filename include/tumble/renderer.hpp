@@ -36,7 +36,7 @@ class Renderer {
 
   int width() const;
   int height() const;
-  int msaa_samples() const;  ///< samples actually used (0 = none)
+  int msaa_samples() const;     ///< samples actually used (0 = none)
   Antialias antialias() const;  ///< the technique in use (msaa falls back to none if unsupported)
 
  private:

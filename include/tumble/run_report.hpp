@@ -22,7 +22,7 @@ struct RunReport {
   std::string command;  ///< "simulate", "render"
   const Scene* scene = nullptr;
   long steps = 0;
-  long samples = 0;         ///< trajectory samples or frames
+  long samples = 0;  ///< trajectory samples or frames
   double sample_rate_hz = 0.0;
   bool every_step = false;
   std::string gl_vendor, gl_renderer, encoder;  ///< empty when nothing was rendered/encoded

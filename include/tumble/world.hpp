@@ -66,8 +66,8 @@ struct ContactTolerances {
 
 /// What contact did over the run, for run.json and tests.
 struct ContactStats {
-  long impacts = 0;                  ///< impact events (impulse resolutions)
-  double max_energy_gain_J = 0.0;    ///< largest energy increase across any contact event
+  long impacts = 0;                ///< impact events (impulse resolutions)
+  double max_energy_gain_J = 0.0;  ///< largest energy increase across any contact event
   double deepest_penetration_m = 0.0;
 };
 

@@ -1,6 +1,6 @@
+#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <charconv>
 
 #include "commands.hpp"
 #include "tumble/atomic_file.hpp"
@@ -9,7 +9,9 @@
 namespace tumble::cli {
 namespace {
 
-[[noreturn]] void bad(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
+[[noreturn]] void bad(const std::string& message) {
+  throw Error(ErrorKind::BadInput, message);
+}
 
 // More steps than this is a typo (dt in ms?), not a run anyone waits for.
 constexpr double kMaxSteps = 1e9;
@@ -63,9 +65,9 @@ Scene load_scene(const CommonOptions& o) {
     const std::string& z = o.size;
     const std::size_t x = z.find('x');
     const auto [end_w, err_w] = std::from_chars(z.data(), z.data() + (x == z.npos ? 0 : x), w);
-    const auto [end_h, err_h] =
-        x == z.npos ? std::from_chars_result{nullptr, std::errc::invalid_argument}
-                    : std::from_chars(z.data() + x + 1, z.data() + z.size(), h);
+    const auto [end_h, err_h] = x == z.npos
+                                    ? std::from_chars_result{nullptr, std::errc::invalid_argument}
+                                    : std::from_chars(z.data() + x + 1, z.data() + z.size(), h);
     if (x == z.npos || x == 0 || err_w != std::errc() || end_w != z.data() + x ||
         err_h != std::errc() || end_h != z.data() + z.size())
       bad("--size must look like 1280x720, not \"" + z + "\"");
@@ -78,8 +80,8 @@ Scene load_scene(const CommonOptions& o) {
 }
 
 std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene) {
-  const std::filesystem::path dir =
-      o.out_dir.empty() ? std::filesystem::path("out") / scene.stem : std::filesystem::path(o.out_dir);
+  const std::filesystem::path dir = o.out_dir.empty() ? std::filesystem::path("out") / scene.stem
+                                                      : std::filesystem::path(o.out_dir);
   make_output_dir(dir);
   return dir;
 }

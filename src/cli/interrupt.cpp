@@ -10,7 +10,9 @@ namespace {
 
 volatile std::sig_atomic_t g_signal = 0;  // the one global: a signal handler can reach no other
 
-extern "C" void on_signal(int signal) { g_signal = signal; }
+extern "C" void on_signal(int signal) {
+  g_signal = signal;
+}
 
 }  // namespace
 
@@ -19,7 +21,9 @@ void install_interrupt_handlers() {
   std::signal(SIGTERM, on_signal);
 }
 
-bool interrupted() { return g_signal != 0; }
+bool interrupted() {
+  return g_signal != 0;
+}
 
 void throw_if_interrupted() {
   if (g_signal != 0) throw Interrupted(static_cast<int>(g_signal));

@@ -27,9 +27,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void bad(const std::string& message) { throw Error(ErrorKind::BadInput, message); }
+[[noreturn]] void bad(const std::string& message) {
+  throw Error(ErrorKind::BadInput, message);
+}
 
-std::string frame_name(long k) { return frame_stem(k) + ".png"; }
+std::string frame_name(long k) {
+  return frame_stem(k) + ".png";
+}
 
 // A frame or a still, in time order.
 struct Event {
@@ -49,7 +53,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--still", o.stills, "Write still_<T>.png of the state at time T (repeatable)");
   cmd->add_option("--crf", o.crf, "H.264 quality, 0 (lossless) to 51 (default 23)");
   cmd->add_option("--antialias", o.antialias, "fxaa (default), msaa or none (overrides the scene)");
-  cmd->add_option("--msaa", o.msaa, "Multisample with N samples: 0 (off), 2, 4 (overrides the scene)");
+  cmd->add_option("--msaa", o.msaa,
+                  "Multisample with N samples: 0 (off), 2, 4 (overrides the scene)");
   cmd->add_option("--encoder", o.encoder,
                   "H.264 encoder: auto (hardware where present, else libx264) or a name");
   cmd->add_option("--egl-device", o.egl_device, "Render on EGL device N (see 'tumble info')");
@@ -81,7 +86,8 @@ int run_render(const RenderOptions& o) {
         " fps gives no frame");
   for (double t : o.stills)
     if (!std::isfinite(t) || t < 0.0 || t > duration)
-      bad("--still " + format_double(t) + " is outside the run [0, " + format_double(duration) + "]");
+      bad("--still " + format_double(t) + " is outside the run [0, " + format_double(duration) +
+          "]");
   if (!want_mp4 && !o.png && o.stills.empty())
     bad("nothing to write: --no-mp4 needs --png or --still");
   if (want_mp4 && (width % 2 || height % 2))
@@ -104,7 +110,7 @@ int run_render(const RenderOptions& o) {
   };
   BoundedQueue<Job> queue(3);
   BoundedQueue<std::vector<std::uint8_t>> spare(4);
-  double encode_s = 0.0, png_s = 0.0;
+  double encode_s = 0.0, png_s = 0.0;  // the worker's; the main thread keeps still_s
   std::exception_ptr worker_error;
   std::thread worker([&] {
     try {
@@ -116,7 +122,8 @@ int run_render(const RenderOptions& o) {
         }
         if (o.png) {
           const auto t0 = Clock::now();
-          write_png(dir / "frames" / frame_name(job->frame), image_from_gl_rgba(job->rgba.data(), width, height));
+          write_png(dir / "frames" / frame_name(job->frame),
+                    image_from_gl_rgba(job->rgba.data(), width, height));
           png_s += seconds_since(t0);
         }
         spare.push(std::move(job->rgba));
@@ -150,13 +157,14 @@ int run_render(const RenderOptions& o) {
     const bool frame_left = next_frame < frames_to_draw, still_left = next_still < stills.size();
     if (!frame_left && !still_left) return std::nullopt;
     const double frame_t = frame_left ? double(next_frame) / fps : INFINITY;
-    if (still_left && stills[next_still] <= frame_t) return Event{stills[next_still], -1, next_still++};
+    if (still_left && stills[next_still] <= frame_t)
+      return Event{stills[next_still], -1, next_still++};
     return Event{frame_t, next_frame++, 0};
   };
 
   World world(def);
   Sampler sampler(world);
-  double simulate_s = 0.0, render_s = 0.0, readback_s = 0.0;
+  double simulate_s = 0.0, render_s = 0.0, readback_s = 0.0, still_s = 0.0;
   std::vector<fs::path> still_paths;
   Progress progress(!o.common.quiet, frames_to_draw, "render", "frames");
   long frames_done = 0;
@@ -173,7 +181,7 @@ int run_render(const RenderOptions& o) {
       t0 = Clock::now();
       const fs::path path = dir / ("still_" + format_double(stills[e.still]) + ".png");
       write_png(path, renderer.read_image());
-      png_s += seconds_since(t0);
+      still_s += seconds_since(t0);
       still_paths.push_back(path);
       continue;
     }
@@ -202,8 +210,8 @@ int run_render(const RenderOptions& o) {
   report.samples = frames_to_draw;
   report.sample_rate_hz = fps;
   report.gl_vendor = gl.info().gl_vendor;
-  report.gl_renderer = gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " +
-                       gl.info().platform + ")";
+  report.gl_renderer =
+      gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " + gl.info().platform + ")";
   report.encoder = mp4 ? mp4->encoder_name() : "";
   report.antialias_used =
       renderer.antialias() == Antialias::Msaa
@@ -213,7 +221,7 @@ int run_render(const RenderOptions& o) {
   report.times.render_s = render_s;
   report.times.readback_s = readback_s;
   if (mp4) report.times.encode_s = encode_s;
-  if (o.png || !still_paths.empty()) report.times.png_s = png_s;
+  if (o.png || !still_paths.empty()) report.times.png_s = png_s + still_s;
   report.energy_start_J = World(def).total_energy();
   report.energy_end_J = sampler.at(duration).total_energy();
   report.contact = world.contact_stats();

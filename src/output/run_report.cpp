@@ -10,7 +10,9 @@ namespace {
 
 using nlohmann::ordered_json;
 
-ordered_json vec(const Vec3& v) { return ordered_json::array({v.x(), v.y(), v.z()}); }
+ordered_json vec(const Vec3& v) {
+  return ordered_json::array({v.x(), v.y(), v.z()});
+}
 
 ordered_json settings_json(const Scene& s) {
   ordered_json j;
@@ -50,19 +52,17 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
   j["tool"] = {{"name", "tumble"}, {"version", TUMBLE_VERSION}};
   j["command"] = r.command;
   if (r.scene) {
-    j["scene"] = {{"path", r.scene->source_name},
-                  {"sha256", sha256_hex(r.scene->source_text)}};
+    j["scene"] = {{"path", r.scene->source_name}, {"sha256", sha256_hex(r.scene->source_text)}};
     j["settings"] = settings_json(*r.scene);
   }
   j["counts"] = {{"steps", r.steps},
                  {"samples", r.samples},
                  {"sample_rate_hz", r.sample_rate_hz},
                  {"every_step", r.every_step}};
-  j["gl"] = r.gl_renderer.empty()
-                ? ordered_json()
-                : ordered_json{{"vendor", r.gl_vendor},
-                               {"renderer", r.gl_renderer},
-                               {"antialias", r.antialias_used}};
+  j["gl"] = r.gl_renderer.empty() ? ordered_json()
+                                  : ordered_json{{"vendor", r.gl_vendor},
+                                                 {"renderer", r.gl_renderer},
+                                                 {"antialias", r.antialias_used}};
   j["encoder"] = r.encoder.empty() ? ordered_json() : ordered_json(r.encoder);
   ordered_json times;
   auto stage = [&](const char* name, const std::optional<double>& s) {

@@ -32,9 +32,9 @@ void TrajectoryWriter::write(double t, const World& world) {
     append(line_, t);
     line_ += ',';
     line_ += b.name();
-    for (double x : {b.state.x.x(), b.state.x.y(), b.state.x.z(), b.state.q.w(), b.state.q.x(),
-                     b.state.q.y(), b.state.q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z(),
-                     world.energy(i)}) {
+    for (double x :
+         {b.state.x.x(), b.state.x.y(), b.state.x.z(), b.state.q.w(), b.state.q.x(), b.state.q.y(),
+          b.state.q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z(), world.energy(i)}) {
       line_ += ',';
       append(line_, x);
     }

@@ -28,16 +28,26 @@ namespace {
 
 std::string egl_error_name(EGLint code) {
   switch (code) {
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return "EGL error " + std::to_string(code);
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    default:
+      return "EGL error " + std::to_string(code);
   }
 }
 
@@ -100,9 +110,13 @@ std::string try_display(EGLDisplay display, EglContext::Handles& h) {
   }
   // Ask for 3.3 core: drivers return their newest compatible core version (4.5 on llvmpipe);
   // asking 4.6 fails with EGL_BAD_MATCH there.
-  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                    3,
+                                    EGL_CONTEXT_MINOR_VERSION,
+                                    3,
                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                    EGL_NONE};
   h.context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
   if (h.context == EGL_NO_CONTEXT)
     return "no OpenGL 3.3 core context (" + egl_error_name(eglGetError()) + ")";
@@ -138,9 +152,9 @@ EglContext::EglContext(int device) {
   bool ok = false;
   if (device >= 0) {
     if (static_cast<std::size_t>(device) >= devices.size())
-      throw Error(ErrorKind::Environment,
-                  "--egl-device " + std::to_string(device) + ": there are only " +
-                      std::to_string(devices.size()) + " EGL devices (see 'tumble info')");
+      throw Error(ErrorKind::Environment, "--egl-device " + std::to_string(device) +
+                                              ": there are only " + std::to_string(devices.size()) +
+                                              " EGL devices (see 'tumble info')");
     ok = attempt("device " + std::to_string(device), device_display(std::size_t(device)));
   } else {
     // GPUs first; then Mesa surfaceless (llvmpipe); then a software device as the last resort.
@@ -148,8 +162,7 @@ EglContext::EglContext(int device) {
       if (!is_software(devices[i])) ok = attempt("device " + std::to_string(i), device_display(i));
     if (!ok)
       ok = attempt("surfaceless", [] {
-        return eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
-                                        nullptr);
+        return eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
       });
     for (std::size_t i = 0; !ok && i < devices.size(); ++i)
       if (is_software(devices[i])) ok = attempt("device " + std::to_string(i), device_display(i));

@@ -115,7 +115,8 @@ Mesh make_sphere(int rings = 16, int segments = 32) {
     const double theta = kPi * r / rings;
     for (int s = 0; s <= segments; ++s) {
       const double phi = 2.0 * kPi * s / segments;
-      const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                   std::sin(theta) * std::sin(phi));
       for (double x : {0.5 * n.x(), 0.5 * n.y(), 0.5 * n.z(), n.x(), n.y(), n.z()})
         v.push_back(float(x));
     }
@@ -129,12 +130,14 @@ Mesh make_sphere(int rings = 16, int segments = 32) {
 }
 
 Mesh make_floor_quad() {
-  const std::vector<float> v = {-1, 0, -1, 0, 1, 0, 1, 0, -1, 0, 1, 0,
-                                1,  0, 1,  0, 1, 0, -1, 0, 1, 0, 1, 0};
+  const std::vector<float> v = {-1, 0, -1, 0, 1, 0, 1,  0, -1, 0, 1, 0,
+                                1,  0, 1,  0, 1, 0, -1, 0, 1,  0, 1, 0};
   return upload(v, {0, 2, 1, 0, 3, 2});
 }
 
-Vec3 color_of(Color c) { return Vec3(c.r, c.g, c.b) / 255.0; }
+Vec3 color_of(Color c) {
+  return Vec3(c.r, c.g, c.b) / 255.0;
+}
 
 double srgb_to_linear(double c) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
@@ -188,10 +191,10 @@ struct Renderer::Impl {
   Antialias antialias;
   GLuint mesh_program = 0, floor_program = 0, fxaa_program = 0;
   Mesh cube, sphere, floor;
-  GLuint empty_vao = 0;                             // the full-screen triangle needs no buffers
-  GLuint ms_fbo = 0, ms_color = 0, ms_depth = 0;    // multisampled target (msaa)
-  GLuint tex_fbo = 0, tex_color = 0, tex_depth = 0; // scene as a texture (fxaa reads it)
-  GLuint fbo = 0, color = 0, depth = 0;             // single-sample target read back
+  GLuint empty_vao = 0;                              // the full-screen triangle needs no buffers
+  GLuint ms_fbo = 0, ms_color = 0, ms_depth = 0;     // multisampled target (msaa)
+  GLuint tex_fbo = 0, tex_color = 0, tex_depth = 0;  // scene as a texture (fxaa reads it)
+  GLuint fbo = 0, color = 0, depth = 0;              // single-sample target read back
 
   explicit Impl(const Scene& s)
       : scene(s), width(s.render.width), height(s.render.height), antialias(s.render.antialias) {}
@@ -219,7 +222,8 @@ struct Renderer::Impl {
     if (texture) {
       glGenTextures(1, &c);
       glBindTexture(GL_TEXTURE_2D, c);
-      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                   nullptr);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -247,7 +251,8 @@ struct Renderer::Impl {
     glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
     if (width > max_size || height > max_size)
       throw Error(ErrorKind::BadInput, "image size " + std::to_string(width) + "x" +
-                                           std::to_string(height) + " exceeds this GPU's limit of " +
+                                           std::to_string(height) +
+                                           " exceeds this GPU's limit of " +
                                            std::to_string(max_size) + " pixels per side");
     // msaa 0 or 1 means none; more is clamped to the driver's limit (4 on llvmpipe).
     if (antialias == Antialias::Msaa && scene.render.msaa > 1)
@@ -294,8 +299,7 @@ struct Renderer::Impl {
     // precision, too far clips the bodies.
     const double distance = (cam.position - target).norm();
     const double near = std::max(0.01, 0.02 * distance), far = 200.0 + 4.0 * distance;
-    const Mat4 view_projection =
-        perspective(cam.fov_deg, double(width) / height, near, far) * view;
+    const Mat4 view_projection = perspective(cam.fov_deg, double(width) / height, near, far) * view;
     const Vec3 light = scene.light.direction.normalized();
 
     glBindFramebuffer(GL_FRAMEBUFFER, antialias == Antialias::Msaa   ? ms_fbo
@@ -463,14 +467,28 @@ struct Renderer::Impl {
   }
 };
 
-Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) { impl_->build(); }
+Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {
+  impl_->build();
+}
 Renderer::~Renderer() = default;
-void Renderer::draw(const World& world) { impl_->draw(world); }
-void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) { impl_->read_rgba(rgba); }
-int Renderer::width() const { return impl_->width; }
-int Renderer::height() const { return impl_->height; }
-int Renderer::msaa_samples() const { return impl_->samples; }
-Antialias Renderer::antialias() const { return impl_->antialias; }
+void Renderer::draw(const World& world) {
+  impl_->draw(world);
+}
+void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
+  impl_->read_rgba(rgba);
+}
+int Renderer::width() const {
+  return impl_->width;
+}
+int Renderer::height() const {
+  return impl_->height;
+}
+int Renderer::msaa_samples() const {
+  return impl_->samples;
+}
+Antialias Renderer::antialias() const {
+  return impl_->antialias;
+}
 
 Image Renderer::read_image() {
   std::vector<std::uint8_t> rgba;

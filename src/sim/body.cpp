@@ -25,7 +25,8 @@ RigidBody::RigidBody(const BodyDef& def)
       mass_(def.mass_kg),
       inverse_mass_(1.0 / def.mass_kg),
       inertia_body_(def.particle ? Vec3(Vec3::Zero()) : def.inertia_body),
-      inverse_inertia_body_(def.particle ? Vec3(Vec3::Zero()) : Vec3(def.inertia_body.cwiseInverse())),
+      inverse_inertia_body_(def.particle ? Vec3(Vec3::Zero())
+                                         : Vec3(def.inertia_body.cwiseInverse())),
       vertices_(def.particle ? std::vector<Vec3>{Vec3::Zero()} : def.vertices),
       restitution_(def.restitution) {
   assert(def.mass_kg > 0.0);

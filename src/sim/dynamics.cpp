@@ -37,7 +37,8 @@ void BodyDynamics::solve_contacts(const BodyState& s, const Kinematics& k, doubl
   const double inv_m = body_.inverse_mass();
   const Vec3 a_cm = k.F * inv_m;
   // α = I⁻¹ (τ − ω × L): the derivative of ω = I⁻¹ L with I⁻¹ rotating along.
-  const Vec3 alpha = body_.is_particle() ? Vec3::Zero() : Vec3(k.Iinv * (k.tau - k.omega.cross(s.L)));
+  const Vec3 alpha =
+      body_.is_particle() ? Vec3::Zero() : Vec3(k.Iinv * (k.tau - k.omega.cross(s.L)));
   Vec3 r[8];
   for (Vec3& ri : r) ri.setZero();  // only the first n are used
   LcpVector b(n);

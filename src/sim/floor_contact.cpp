@@ -12,7 +12,9 @@ namespace {
 
 using Tol = ContactTolerances;
 
-double kinetic_energy(const RigidBody& b) { return b.energy(Vec3::Zero()); }
+double kinetic_energy(const RigidBody& b) {
+  return b.energy(Vec3::Zero());
+}
 
 Vec3 point_velocity(const RigidBody& b, const Vec3& omega, const Vec3& r) {
   return b.velocity() + omega.cross(r);
@@ -123,8 +125,7 @@ double resolve_impact(RigidBody& b, const ContactSet& c, double rest_speed, doub
   return kinetic_energy(b) - e_before;
 }
 
-void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impulse,
-                    double mu) {
+void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impulse, double mu) {
   using MatF = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 16, 16>;
   using VecF = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 16, 1>;
   const int n = c.count;
@@ -133,7 +134,7 @@ void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impu
   const Mat3 Iinv = b.inverse_inertia_world();
   Vec3 r[8];
   for (Vec3& ri : r) ri.setZero();  // only the first n are used
-  VecF u(2 * n);  // tangential slip (x, z) of every point
+  VecF u(2 * n);                    // tangential slip (x, z) of every point
   for (int i = 0; i < n; ++i) {
     r[i] = b.state.R * b.vertices()[c.vertex[i]];
     const Vec3 vp = point_velocity(b, omega, r[i]);
@@ -159,9 +160,9 @@ void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impu
   if (!sticks) {
     for (int i = 0; i < n; ++i) {
       const double slip = u.segment<2>(2 * i).norm();
-      t.segment<2>(2 * i) = slip > 0.0 ? Eigen::Vector2d(-mu * normal_impulse[i] *
-                                                         u.segment<2>(2 * i) / slip)
-                                       : Eigen::Vector2d::Zero();
+      t.segment<2>(2 * i) =
+          slip > 0.0 ? Eigen::Vector2d(-mu * normal_impulse[i] * u.segment<2>(2 * i) / slip)
+                     : Eigen::Vector2d::Zero();
     }
     // Kinetic energy along s·t is KE0 + s (u·t) + ½ s² tᵀKt: take the s in [0, 1] that
     // dissipates most, so sliding friction stops a slip but never reverses it.
@@ -170,8 +171,7 @@ void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impu
     const double s = curvature > 0.0 ? std::min(1.0, -slope / curvature) : 1.0;
     t *= s;
   }
-  for (int i = 0; i < n; ++i)
-    apply_impulse(b, r[i], Vec3(t(2 * i), 0.0, t(2 * i + 1)));
+  for (int i = 0; i < n; ++i) apply_impulse(b, r[i], Vec3(t(2 * i), 0.0, t(2 * i + 1)));
 }
 
 void classify_sliding(const RigidBody& b, ContactSet& c, double mu, double dv) {

@@ -39,8 +39,7 @@ double resolve_impact(RigidBody& b, const ContactSet& c, double rest_speed, doub
 /// Coulomb friction impulses at contact points given their normal impulses: all points stick
 /// when the sticking impulse lies inside every friction cone, else each slides against its slip
 /// scaled by the step that dissipates most. Never adds kinetic energy.
-void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impulse,
-                    double mu);
+void apply_friction(RigidBody& b, const ContactSet& c, const double* normal_impulse, double mu);
 
 /// Marks the points of `c` that slide: their slip is faster than friction could stop within the
 /// stretch (2·mu·dv, with dv = |g|·stretch), so kinetic friction acts on them inside the step.

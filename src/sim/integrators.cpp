@@ -74,10 +74,18 @@ void normalize_orientation(BodyState& s, RotationRep rep) {
 BodyState integrate(const BodyDynamics& f, const BodyState& s, double h, Integrator method) {
   BodyState out;
   switch (method) {
-    case Integrator::Euler: out = add(s, f(s), h, f); break;
-    case Integrator::SymplecticEuler: out = symplectic_euler(f, s, h); break;
-    case Integrator::Midpoint: out = add(s, f(add(s, f(s), 0.5 * h, f)), h, f); break;
-    case Integrator::Rk4: out = rk4(f, s, h); break;
+    case Integrator::Euler:
+      out = add(s, f(s), h, f);
+      break;
+    case Integrator::SymplecticEuler:
+      out = symplectic_euler(f, s, h);
+      break;
+    case Integrator::Midpoint:
+      out = add(s, f(add(s, f(s), 0.5 * h, f)), h, f);
+      break;
+    case Integrator::Rk4:
+      out = rk4(f, s, h);
+      break;
   }
   if (!f.body().is_particle()) normalize_orientation(out, f.rotation());
   return out;

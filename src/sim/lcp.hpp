@@ -10,7 +10,8 @@
 namespace tumble {
 
 inline constexpr int kMaxLcpSize = 8;
-using LcpMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLcpSize, kMaxLcpSize>;
+using LcpMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLcpSize, kMaxLcpSize>;
 using LcpVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
 
 /// Returns f. Exact for n <= kMaxLcpSize when a solution exists (always, for PSD A coming from

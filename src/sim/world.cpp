@@ -41,8 +41,8 @@ void World::advance_body(RigidBody& b, double h) {
   if (b.at_rest) return;  // static equilibrium: the exact motion over any step is none
   const ForceModel forces{def_.gravity, def_.linear_drag, def_.angular_drag};
   if (!def_.floor) {
-    b.state = integrate(BodyDynamics(b, def_.rotation, forces, nullptr), b.state, h,
-                        def_.integrator);
+    b.state =
+        integrate(BodyDynamics(b, def_.rotation, forces, nullptr), b.state, h, def_.integrator);
     return;
   }
   const double floor_y = def_.floor->height;

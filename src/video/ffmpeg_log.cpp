@@ -32,6 +32,8 @@ void log_quietly(void* object, int level, const char* format, va_list args) {
 
 }  // namespace
 
-void silence_ffmpeg_log() { av_log_set_callback(log_quietly); }
+void silence_ffmpeg_log() {
+  av_log_set_callback(log_quietly);
+}
 
 }  // namespace tumble

@@ -1,11 +1,12 @@
 // The renderer on the real EGL + OpenGL stack (llvmpipe here and in CI), at 160×120: where a body
 // appears, that nothing is flipped or mirrored, that frames move, that the shadow falls.
+#include "tumble/renderer.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
 
 #include "tumble/egl_context.hpp"
-#include "tumble/renderer.hpp"
 #include "tumble/world_builder.hpp"
 
 namespace tumble {
@@ -41,7 +42,8 @@ size = [0.6, 0.6, 0.6]
 mass = 1.0
 position = [2.0, 2.0, 0.0]
 color = "#ff0000"
-)", "<test>");
+)",
+                        "<test>");
   return s;
 }
 
@@ -152,8 +154,8 @@ TEST(Renderer, FxaaSmoothsTheBodysEdgesAndLeavesTheRestBitExact) {
       // The box spans about ±12 px around its centre here; FXAA reaches a few more.
       far_changed += differs && (std::abs(x - centre.x()) > 30 || std::abs(y - centre.y()) > 30);
     }
-  EXPECT_GT(changed, 10);      // the silhouette's stair steps were blended
-  EXPECT_EQ(far_changed, 0);   // nothing else moved
+  EXPECT_GT(changed, 10);     // the silhouette's stair steps were blended
+  EXPECT_EQ(far_changed, 0);  // nothing else moved
 }
 
 }  // namespace

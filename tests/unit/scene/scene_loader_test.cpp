@@ -715,7 +715,8 @@ Scene parse_render(const std::string& render_table) {
 shape = "box"
 size = [1.0, 1.0, 1.0]
 mass = 1.0
-)", "aa.toml");
+)",
+                     "aa.toml");
 }
 
 TEST(SceneLoader, AntialiasDefaultsToFxaa) {

@@ -140,8 +140,8 @@ TEST(Bounce, NoContactGainsEnergy) {
   // that removes the integration drift δ of held points adds m g δ. δ is the integrator's local
   // error at those points: round-off for rk4 and midpoint here (bound 1e-9 J on a ~30 J system),
   // O(g dt²) for the first-order methods (bound 1e-6 J; 1.2e-7 J measured for symplectic Euler).
-  for (Integrator integrator : {Integrator::Rk4, Integrator::Midpoint, Integrator::Euler,
-                                Integrator::SymplecticEuler}) {
+  for (Integrator integrator :
+       {Integrator::Rk4, Integrator::Midpoint, Integrator::Euler, Integrator::SymplecticEuler}) {
     World w(seed_world(integrator, RotationRep::Quaternion, 0.001));
     const double e0 = w.total_energy();
     for (int i = 0; i < 6000; ++i) w.step();

@@ -27,8 +27,7 @@ TEST(Lcp, FourCoplanarPointsGetEqualForces) {
   LcpVector b(4);
   for (int i = 0; i < 4; ++i) {
     b(i) = -g;
-    for (int j = 0; j < 4; ++j)
-      A(i, j) = 1.0 / m + (r[i][0] * r[j][0] + r[i][1] * r[j][1]) / I;
+    for (int j = 0; j < 4; ++j) A(i, j) = 1.0 / m + (r[i][0] * r[j][0] + r[i][1] * r[j][1]) / I;
   }
   const LcpVector f = solve_lcp(A, b);
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(f(i), m * g / 4.0, 1e-12);

@@ -1,9 +1,10 @@
 // Sampling at exact times never disturbs the fixed-step trajectory, and the state at a time
 // depends on that time alone, not on which other times were sampled.
+#include "tumble/sampler.hpp"
+
 #include <gtest/gtest.h>
 
 #include "sim_fixtures.hpp"
-#include "tumble/sampler.hpp"
 
 namespace tumble {
 namespace {
@@ -45,7 +46,7 @@ TEST(Sampler, SamplingNeverDisturbsTheSteppedTrajectory) {
 }
 
 TEST(Sampler, StepBoundaryTimesAreRecognised) {
-  EXPECT_EQ(Sampler::steps_before(0.5, 0.001), 500);   // 0.5/0.001 is not exactly 500 in binary
+  EXPECT_EQ(Sampler::steps_before(0.5, 0.001), 500);  // 0.5/0.001 is not exactly 500 in binary
   EXPECT_EQ(Sampler::steps_before(0.0005, 0.001), 0);
   EXPECT_EQ(Sampler::steps_before(1.0 / 60.0, 0.001), 16);
   EXPECT_EQ(sample_count(4.0, 60.0), 241);

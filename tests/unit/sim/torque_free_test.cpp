@@ -79,7 +79,8 @@ INSTANTIATE_TEST_SUITE_P(TorqueFree, EveryIntegrator,
 TEST(TorqueFree, IntermediateAxisFlips) {
   // Spin about the intermediate axis (y: I_y is the middle moment for edges 1, 2, 3) with a small
   // perturbation: the Dzhanibekov effect turns the body over periodically, so ω's body-frame y
-  // component changes sign. Growth rate ω_y·sqrt((I_y−I_z)(I_x−I_y)/(I_x I_z)) ≈ 1.9 /s: 10 s shows two full turn-overs.
+  // component changes sign. Growth rate ω_y·sqrt((I_y−I_z)(I_x−I_y)/(I_x I_z)) ≈ 1.9 /s: 10 s shows
+  // two full turn-overs.
   WorldDef def = test::world_def(Integrator::Rk4, 0.001, false);
   def.gravity.setZero();
   BodyDef body = test::box_def(Vec3(1.0, 2.0, 3.0), 3.0, Vec3::Zero());
