@@ -21,7 +21,12 @@ class Renderer {
  public:
   /// Compiles the embedded shaders and builds the framebuffers for scene.render's size and
   /// msaa (clamped to what the driver offers). Throws tumble::Error (Environment) on GL failure.
-  explicit Renderer(const Scene& scene);
+  /// How frames come back to the CPU. Async reads into pixel-pack buffers and collects them a
+  /// frame later, so a GPU renders the next frame while the copy runs; on a CPU rasteriser
+  /// (llvmpipe) the copy happens at once anyway and Sync saves a memcpy. Auto picks by renderer.
+  enum class Readback { Auto, Sync, Async };
+
+  explicit Renderer(const Scene& scene, Readback readback = Readback::Auto);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -31,6 +36,12 @@ class Renderer {
   /// Reads the last drawn frame into `rgba` (resized) as RGBA rows, bottom-up as OpenGL returns
   /// them: straight into the caller's buffer, no copy.
   void read_rgba(std::vector<std::uint8_t>& rgba);
+  /// Starts reading the last drawn frame back; at most two may be in flight. Drawing may go on.
+  void begin_readback();
+  /// Completes the oldest begun readback into `rgba` (bottom-up RGBA rows, resized; its old
+  /// storage may be swapped in for reuse).
+  void finish_readback(std::vector<std::uint8_t>& rgba);
+  bool async_readback() const;
   /// The last drawn frame as a top-down RGB image.
   Image read_image();
 

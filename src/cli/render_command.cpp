@@ -168,6 +168,21 @@ int run_render(const RenderOptions& o) {
   std::vector<fs::path> still_paths;
   Progress progress(!o.common.quiet, frames_to_draw, "render", "frames");
   long frames_done = 0;
+  // Frame k is read back while frame k+1 is drawn (asynchronous on GPUs): it is collected, in
+  // order, after the next frame's readback has begun, or at the end.
+  std::optional<long> pending;
+  auto collect_pending = [&]() -> bool {
+    const auto t0 = Clock::now();
+    // A recycled buffer: after the first few frames, no allocation.
+    std::vector<std::uint8_t> buffer;
+    if (frames_done >= 4) buffer = spare.pop().value_or(std::vector<std::uint8_t>{});
+    renderer.finish_readback(buffer);
+    readback_s += seconds_since(t0);
+    const bool pushed = queue.push(Job{*pending, std::move(buffer)});  // false: the worker failed
+    pending.reset();
+    progress.update(++frames_done);
+    return pushed;
+  };
   while (const std::optional<Event> next = next_event()) {
     const Event& e = *next;
     throw_if_interrupted();
@@ -186,14 +201,12 @@ int run_render(const RenderOptions& o) {
       continue;
     }
     t0 = Clock::now();
-    // Read straight into a recycled buffer: after the first few frames, no allocation.
-    std::vector<std::uint8_t> buffer;
-    if (frames_done >= 4) buffer = spare.pop().value_or(std::vector<std::uint8_t>{});
-    renderer.read_rgba(buffer);
+    renderer.begin_readback();
     readback_s += seconds_since(t0);
-    if (!queue.push(Job{e.frame, std::move(buffer)})) break;  // the worker failed
-    progress.update(++frames_done);
+    if (pending && !collect_pending()) break;
+    pending = e.frame;
   }
+  if (pending) collect_pending();
   queue.close();
   worker.join();
   if (worker_error) std::rethrow_exception(worker_error);

@@ -196,6 +196,14 @@ struct Renderer::Impl {
   GLuint tex_fbo = 0, tex_color = 0, tex_depth = 0;  // scene as a texture (fxaa reads it)
   GLuint fbo = 0, color = 0, depth = 0;              // single-sample target read back
 
+  // Readback: pixel-pack buffers and fences (async), or buffers filled at once (sync); a ring of
+  // two, oldest first.
+  bool async = false;
+  GLuint pbo[2] = {0, 0};
+  GLsync fence[2] = {nullptr, nullptr};
+  std::vector<std::uint8_t> sync_frame[2];
+  int begun = 0, finished = 0;
+
   explicit Impl(const Scene& s)
       : scene(s), width(s.render.width), height(s.render.height), antialias(s.render.antialias) {}
 
@@ -212,6 +220,9 @@ struct Renderer::Impl {
     const GLuint rbs[] = {ms_color, ms_depth, tex_depth, color, depth};
     glDeleteRenderbuffers(5, rbs);
     glDeleteTextures(1, &tex_color);
+    for (GLsync& f : fence)
+      if (f) glDeleteSync(f);
+    glDeleteBuffers(2, pbo);
   }
 
   // A framebuffer with n samples (0 = single), its colour in a renderbuffer or, with
@@ -458,6 +469,62 @@ struct Renderer::Impl {
     glEnable(GL_DEPTH_TEST);
   }
 
+  void setup_readback(Readback mode) {
+    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::string name = renderer ? renderer : "";
+    const bool cpu_rasteriser = name.find("llvmpipe") != std::string::npos ||
+                                name.find("softpipe") != std::string::npos ||
+                                name.find("SwiftShader") != std::string::npos;
+    async = mode == Readback::Async || (mode == Readback::Auto && !cpu_rasteriser);
+    if (!async) return;
+    glGenBuffers(2, pbo);
+    for (GLuint b : pbo) {
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, b);
+      glBufferData(GL_PIXEL_PACK_BUFFER, GLsizeiptr(width) * height * 4, nullptr, GL_STREAM_READ);
+    }
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    if (glGetError() != GL_NO_ERROR) gl_fail("creating the readback buffers failed");
+  }
+
+  void begin_readback() {
+    if (begun - finished >= 2) gl_fail("more than two readbacks in flight");  // a caller bug
+    const int slot = begun % 2;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (async) {
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, pbo[slot]);
+      glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+      glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+      fence[slot] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+      glFlush();  // so the copy starts now, not at the next wait
+    } else {
+      read_rgba(sync_frame[slot]);
+    }
+    if (glGetError() != GL_NO_ERROR) gl_fail("starting a readback failed");
+    ++begun;
+  }
+
+  void finish_readback(std::vector<std::uint8_t>& out) {
+    if (finished >= begun) gl_fail("no readback in flight");  // a caller bug
+    const int slot = finished % 2;
+    ++finished;
+    if (!async) {
+      std::swap(out, sync_frame[slot]);  // no copy: the caller's old buffer is reused next time
+      return;
+    }
+    glClientWaitSync(fence[slot], GL_SYNC_FLUSH_COMMANDS_BIT, GLuint64(10'000'000'000));
+    glDeleteSync(fence[slot]);
+    fence[slot] = nullptr;
+    out.resize(std::size_t(width) * height * 4);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, pbo[slot]);
+    const void* mapped =
+        glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(out.size()), GL_MAP_READ_BIT);
+    if (!mapped) gl_fail("mapping a readback buffer failed");
+    std::memcpy(out.data(), mapped, out.size());
+    glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  }
+
   void read_rgba(std::vector<std::uint8_t>& out) {
     out.resize(std::size_t(width) * height * 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
@@ -467,8 +534,18 @@ struct Renderer::Impl {
   }
 };
 
-Renderer::Renderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {
+Renderer::Renderer(const Scene& scene, Readback readback) : impl_(std::make_unique<Impl>(scene)) {
   impl_->build();
+  impl_->setup_readback(readback);
+}
+void Renderer::begin_readback() {
+  impl_->begin_readback();
+}
+void Renderer::finish_readback(std::vector<std::uint8_t>& rgba) {
+  impl_->finish_readback(rgba);
+}
+bool Renderer::async_readback() const {
+  return impl_->async;
 }
 Renderer::~Renderer() = default;
 void Renderer::draw(const World& world) {
