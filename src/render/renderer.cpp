@@ -1,14 +1,11 @@
 #include "tumble/renderer.hpp"
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/glcorearb.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
 
-#include "shader_sources.hpp"
+#include "gl_resources.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -16,124 +13,6 @@ namespace {
 
 using Mat4 = Eigen::Matrix4d;
 using Mat4f = Eigen::Matrix4f;
-
-[[noreturn]] void gl_fail(const std::string& what) {
-  throw Error(ErrorKind::Environment, "OpenGL: " + what);
-}
-
-GLuint compile(GLenum kind, const std::string& source, const char* name) {
-  const GLuint shader = glCreateShader(kind);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    gl_fail(std::string("shader ") + name + " does not compile: " + log);
-  }
-  return shader;
-}
-
-// Fragment shaders are assembled as: version line, shared lighting code, the shader itself.
-GLuint link(const char* vert_name, const char* frag_name) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, std::string(shader_source(vert_name)), vert_name);
-  const std::string frag = "#version 330 core\n" + std::string(shader_source("common.glsl")) +
-                           std::string(shader_source(frag_name));
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, frag, frag_name);
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) gl_fail(std::string("program ") + vert_name + "+" + frag_name + " does not link");
-  return program;
-}
-
-struct Mesh {
-  GLuint vao = 0, vbo = 0, ebo = 0;
-  GLsizei count = 0;
-};
-
-// Interleaved position + normal, indexed triangles.
-Mesh upload(const std::vector<float>& vertices, const std::vector<unsigned>& indices) {
-  Mesh m;
-  glGenVertexArrays(1, &m.vao);
-  glGenBuffers(1, &m.vbo);
-  glGenBuffers(1, &m.ebo);
-  glBindVertexArray(m.vao);
-  glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
-               vertices.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(unsigned)),
-               indices.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-  glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
-                        reinterpret_cast<void*>(3 * sizeof(float)));
-  glBindVertexArray(0);
-  m.count = static_cast<GLsizei>(indices.size());
-  return m;
-}
-
-// Unit cube [-0.5, 0.5]³ with flat face normals: 24 vertices, 36 indices.
-Mesh make_cube() {
-  std::vector<float> v;
-  std::vector<unsigned> idx;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int sign = -1; sign <= 1; sign += 2) {
-      Vec3 n = Vec3::Zero();
-      n[axis] = sign;
-      const Vec3 u = Vec3::Unit((axis + 1) % 3), w = Vec3::Unit((axis + 2) % 3);
-      const unsigned base = static_cast<unsigned>(v.size() / 6);
-      const double corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      for (const auto& c : corners) {
-        const Vec3 p = 0.5 * (n + c[0] * u + c[1] * w);
-        for (double x : {p.x(), p.y(), p.z(), n.x(), n.y(), n.z()}) v.push_back(float(x));
-      }
-      // Counter-clockwise seen from outside: u × w = n for sign +1, so flip for sign −1.
-      if (sign > 0)
-        idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-      else
-        idx.insert(idx.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
-    }
-  return upload(v, idx);
-}
-
-// Unit-diameter UV sphere for particles.
-Mesh make_sphere(int rings = 16, int segments = 32) {
-  std::vector<float> v;
-  std::vector<unsigned> idx;
-  for (int r = 0; r <= rings; ++r) {
-    const double theta = kPi * r / rings;
-    for (int s = 0; s <= segments; ++s) {
-      const double phi = 2.0 * kPi * s / segments;
-      const Vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                   std::sin(theta) * std::sin(phi));
-      for (double x : {0.5 * n.x(), 0.5 * n.y(), 0.5 * n.z(), n.x(), n.y(), n.z()})
-        v.push_back(float(x));
-    }
-  }
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < segments; ++s) {
-      const unsigned a = unsigned(r * (segments + 1) + s), b = a + unsigned(segments + 1);
-      idx.insert(idx.end(), {a, a + 1, b, b, a + 1, b + 1});
-    }
-  return upload(v, idx);
-}
-
-Mesh make_floor_quad() {
-  const std::vector<float> v = {-1, 0, -1, 0, 1, 0, 1,  0, -1, 0, 1, 0,
-                                1,  0, 1,  0, 1, 0, -1, 0, 1,  0, 1, 0};
-  return upload(v, {0, 2, 1, 0, 3, 2});
-}
 
 Vec3 color_of(Color c) {
   return Vec3(c.r, c.g, c.b) / 255.0;
@@ -208,11 +87,7 @@ struct Renderer::Impl {
       : scene(s), width(s.render.width), height(s.render.height), antialias(s.render.antialias) {}
 
   ~Impl() {
-    for (Mesh* m : {&cube, &sphere, &floor}) {
-      glDeleteVertexArrays(1, &m->vao);
-      glDeleteBuffers(1, &m->vbo);
-      glDeleteBuffers(1, &m->ebo);
-    }
+    for (Mesh* m : {&cube, &sphere, &floor}) m->release();
     glDeleteVertexArrays(1, &empty_vao);
     for (GLuint program : {mesh_program, floor_program, fxaa_program}) glDeleteProgram(program);
     const GLuint fbos[] = {ms_fbo, tex_fbo, fbo};
@@ -272,12 +147,12 @@ struct Renderer::Impl {
     if (samples > 0) make_target(ms_fbo, ms_color, ms_depth, samples);
     if (antialias == Antialias::Fxaa) {
       make_target(tex_fbo, tex_color, tex_depth, 0, /*texture=*/true);
-      fxaa_program = link("fullscreen.vert", "fxaa.frag");
+      fxaa_program = link_program("fullscreen.vert", "fxaa.frag");
       glGenVertexArrays(1, &empty_vao);
     }
     make_target(fbo, color, depth, 0);
-    mesh_program = link("mesh.vert", "mesh.frag");
-    floor_program = link("floor.vert", "floor.frag");
+    mesh_program = link_program("mesh.vert", "mesh.frag");
+    floor_program = link_program("floor.vert", "floor.frag");
     cube = make_cube();
     sphere = make_sphere();
     floor = make_floor_quad();

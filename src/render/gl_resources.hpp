@@ -1,0 +1,30 @@
+#pragma once
+// The renderer's GL building blocks: shader programs from the embedded GLSL, and the meshes it
+// draws (unit cube, unit-diameter sphere, floor square), uploaded once. Needs a current context.
+
+#define GL_GLEXT_PROTOTYPES
+#include <GL/glcorearb.h>
+
+#include <string>
+
+namespace tumble {
+
+/// Throws tumble::Error (Environment) "OpenGL: what".
+[[noreturn]] void gl_fail(const std::string& what);
+
+/// Compiles and links shaders/<vert_name> with shaders/<frag_name>; fragment shaders get the
+/// version line and shaders/common.glsl (shared lighting) in front.
+GLuint link_program(const char* vert_name, const char* frag_name);
+
+/// An indexed triangle mesh of interleaved position + normal (attributes 0 and 1).
+struct Mesh {
+  GLuint vao = 0, vbo = 0, ebo = 0;
+  GLsizei count = 0;
+  void release();  ///< deletes the GL objects (an explicit call: the context must be current)
+};
+
+Mesh make_cube();                                     ///< [-0.5, 0.5]³, flat face normals
+Mesh make_sphere(int rings = 16, int segments = 32);  ///< diameter 1, smooth normals
+Mesh make_floor_quad();                               ///< [-1, 1]² at y = 0, normal +y
+
+}  // namespace tumble
