@@ -11,16 +11,7 @@ namespace tumble_e2e {
 namespace {
 
 // Line numbers the tests below rely on:        line
-constexpr std::string_view kScene = R"([simulation]
-duration = 0.5
-[floor]
-[[body]]
-name = "box"
-shape = "box"
-size = [1.0, 1.0, 1.0]
-mass = 1.0
-position = [0.0, 3.0, 0.0]
-)";
+constexpr std::string_view kScene = kDropScene;
 //  1 [simulation]   2 duration   3 [floor]   4 [[body]]   5 name   6 shape   7 size   8 mass
 //  9 position       10: what a test appends
 

@@ -9,16 +9,7 @@
 namespace tumble_e2e {
 namespace {
 
-constexpr std::string_view kGoodScene = R"([simulation]
-duration = 0.5
-[floor]
-[[body]]
-name = "box"
-shape = "box"
-size = [1.0, 1.0, 1.0]
-mass = 1.0
-position = [0.0, 3.0, 0.0]
-)";
+constexpr std::string_view kGoodScene = kDropScene;
 
 TEST(Environment, OutUnderARegularFileIsExit3) {
   const TestDir dir;

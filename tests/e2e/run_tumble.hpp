@@ -248,4 +248,18 @@ inline std::vector<fs::path> example_scenes() {
   return scenes;
 }
 
+/// A small valid scene: a unit box dropped from 3 m onto a floor for 0.5 s. Line by line:
+///  1 [simulation]   2 duration   3 [floor]   4 [[body]]   5 name   6 shape   7 size   8 mass
+///  9 position (bad-input tests point at these lines).
+inline constexpr std::string_view kDropScene = R"([simulation]
+duration = 0.5
+[floor]
+[[body]]
+name = "box"
+shape = "box"
+size = [1.0, 1.0, 1.0]
+mass = 1.0
+position = [0.0, 3.0, 0.0]
+)";
+
 }  // namespace tumble_e2e

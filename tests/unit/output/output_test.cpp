@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../test_dir.hpp"
 #include "tumble/atomic_file.hpp"
 #include "tumble/error.hpp"
 #include "tumble/sha256.hpp"
@@ -16,10 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("tumble_output_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("output_test", name);
 }
 
 std::string slurp(const fs::path& p) {

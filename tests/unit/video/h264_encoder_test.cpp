@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../test_dir.hpp"
 #include "tumble/error.hpp"
 #include "tumble/mp4_writer.hpp"
 
@@ -19,10 +20,7 @@ constexpr int kWidth = 64;
 constexpr int kHeight = 48;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("tumble_h264_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("h264_test", name);
 }
 
 long entries(const fs::path& dir) {

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "../test_dir.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -25,10 +26,7 @@ constexpr int kFps = 30;
 constexpr int kFrames = 30;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("tumble_mp4_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("mp4_test", name);
 }
 
 std::string slurp(const fs::path& p) {

@@ -9,6 +9,7 @@
 #include <iterator>
 #include <string>
 
+#include "../test_dir.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -17,10 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("tumble_png_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("png_test", name);
 }
 
 std::string slurp(const fs::path& p) {

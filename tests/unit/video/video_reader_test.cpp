@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "../test_dir.hpp"
 #include "tumble/error.hpp"
 #include "tumble/mp4_writer.hpp"
 
@@ -21,10 +22,7 @@ constexpr int kHeight = 120;
 constexpr int kFrames = 12;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("tumble_video_reader_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test::fresh_dir("video_reader_test", name);
 }
 
 Mp4Settings small_settings() {
