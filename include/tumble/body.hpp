@@ -30,6 +30,9 @@ struct BodyDef {
   Vec3 inertia_body = Vec3::Ones();  ///< principal moments, kg·m² (unused for a particle)
   std::vector<Vec3> vertices;        ///< contact points in the body frame (box: its 8 corners)
   double restitution = 0.5;          ///< against the floor, in [0, 1]
+  /// Characteristic length ℓ for the scale of contact tolerances; 0 = the vertices' largest
+  /// extent (a particle, whose one vertex spans nothing, gets its drawn size from the scene).
+  double length_m = 0.0;
   Vec3 position = Vec3::Zero();
   Quat orientation = Quat::Identity();
   Vec3 velocity = Vec3::Zero();

@@ -32,6 +32,7 @@ struct SimulationSettings {
   double dt_s = 0.001;  ///< fixed physics step, independent of fps
   Integrator integrator = Integrator::Rk4;
   RotationRep rotation = RotationRep::Quaternion;
+  double tolerance = 1e-8;  ///< adaptive only: local error tolerance (dt is its largest step)
   Vec3 gravity{0.0, -9.81, 0.0};
   double linear_drag = 0.0;   ///< N·s/m; 0 = not modelled
   double angular_drag = 0.0;  ///< N·m·s; 0 = not modelled

@@ -15,10 +15,14 @@
 #include <vector>
 
 #include "tumble/body.hpp"
+#include "tumble/diagnostics.hpp"
 #include "tumble/integrators.hpp"
 #include "tumble/math.hpp"
 
 namespace tumble {
+
+struct Stepping;
+class BodyDynamics;
 
 struct FloorDef {
   double height = 0.0;
@@ -30,38 +34,60 @@ struct WorldDef {
   Integrator integrator = Integrator::Rk4;
   RotationRep rotation = RotationRep::Quaternion;
   Vec3 gravity{0.0, -9.81, 0.0};
+  /// Local error tolerance of the adaptive integrator (dt is then its largest step).
+  double tolerance = 1e-8;
   double linear_drag = 0.0;   ///< N·s/m, 0 = none
   double angular_drag = 0.0;  ///< N·m·s, 0 = none
   std::optional<FloorDef> floor;
   std::vector<BodyDef> bodies;
 };
 
-/// Tolerances of the contact model, with their reasons.
+/// Tolerances of the contact model, with their reasons. Physics has no preferred scale: every
+/// tolerance is a fixed fraction of the body's own length ℓ (its largest extent), speed
+/// u = sqrt(g ℓ) and time ℓ/u, normalised so that a 1 m body under standard gravity gets the
+/// figures quoted below. A 1 mm box dropped from 3 mm is then a scaled copy of a 1 m box dropped
+/// from 3 m (lengths × s, times × √s), down to its resting height. Without gravity, standard
+/// gravity sets the speed scale.
 struct ContactTolerances {
-  /// An impact's time is located to within this (s), from a bracket that always holds the
-  /// crossing: at impact speeds below 100 m/s the vertex is then within 1e-10 m of the plane.
-  static constexpr double kToiTime = 1e-12;
-  /// Points this close to the plane touch it: they form one contact set (a nearly flat landing is
-  /// resolved as one simultaneous impact) and may rest.
-  static constexpr double kTouch = 1e-6;
+  double length_m = 1.0;  ///< ℓ: the body's largest extent (a particle: its drawn size)
+  /// An impact's time is located to within this, from a bracket that always holds the
+  /// crossing: 1e-12 s for a 1 m body, where a vertex is then within 1e-10 m of the plane at
+  /// impact speeds below 100 m/s.
+  double toi_time_s = 1e-12;
+  /// Points this close to the plane touch it (1e-6 ℓ): they form one contact set (a nearly flat
+  /// landing is resolved as one simultaneous impact) and may rest.
+  double touch_m = 1e-6;
   /// Below the rest speed an impact is inelastic (e = 0), so bouncing ends instead of going Zeno.
-  /// It is the larger of 1 cm/s (a bounce that would rise v²/2g ≈ 5 µm) and the speed gravity
-  /// adds in two steps, g·2dt: a fixed-step scheme cannot tell slower bounces from resting
-  /// (with the seed's dt = 1/30 s that is 0.65 m/s, a 2 cm hop).
-  static constexpr double kRestSpeed = 1e-2;
-  static double rest_speed(const Vec3& gravity, double dt_s) {
-    return std::max(kRestSpeed, 2.0 * gravity.norm() * dt_s);
-  }
-  /// Resting points the floor holds (with contact forces) separate no faster than this: a force
-  /// at a point that moves away would do work. After an inelastic impulse, held points have
-  /// zero normal speed to round-off, far below it.
-  static constexpr double kHoldSpeed = 1e-6;
+  /// It is the larger of 1 cm/s at 1 m (a bounce that would rise v²/2g ≈ 5 µm, 5e-6 ℓ) and the
+  /// speed gravity adds in two steps, g·2dt: a fixed-step scheme cannot tell slower bounces from
+  /// resting (with the seed's dt = 1/30 s that is 0.65 m/s, a 2 cm hop).
+  double rest_speed_mps = 1e-2;
+  /// Resting points the floor holds (with contact forces) separate no faster than this (1 µm/s
+  /// at 1 m): a force at a point that moves away would do work. After an inelastic impulse, held
+  /// points have zero normal speed to round-off, far below it.
+  double hold_speed_mps = 1e-6;
   /// A body supported by >= 3 resting points around its centre of mass, every point of it slower
-  /// than this, is put at rest (P = L = 0): removes at most ½ m (1e-3)² of kinetic energy.
-  static constexpr double kSleepSpeed = 1e-3;
+  /// than this (1 mm/s at 1 m), is put at rest (P = L = 0): removes at most ½ m (1e-3 u)² of
+  /// kinetic energy.
+  double sleep_speed_mps = 1e-3;
   /// Events (impacts) handled inside one step of one body before the rest of the step treats
   /// every contact as inelastic.
   static constexpr int kMaxEventsPerStep = 64;
+
+  /// The tolerances of a body of largest extent `length_m` under `gravity`, stepped with dt.
+  static ContactTolerances for_body(double length_m, const Vec3& gravity, double dt_s);
+};
+
+/// The largest extent of a body's contact vertices (box: its longest edge); `fallback` when they
+/// span nothing (a particle, whose one vertex is its centre).
+double body_length(const std::vector<Vec3>& vertices, double fallback);
+
+/// One impact event against the floor: when, which body, and how fast its fastest approaching
+/// point came in (m/s, > 0). Impacts slower than the body's rest speed are inelastic.
+struct ImpactEvent {
+  double t_s = 0.0;
+  int body = 0;
+  double approach_speed_mps = 0.0;
 };
 
 /// What contact did over the run, for run.json and tests.
@@ -69,6 +95,18 @@ struct ContactStats {
   long impacts = 0;                ///< impact events (impulse resolutions)
   double max_energy_gain_J = 0.0;  ///< largest energy increase across any contact event
   double deepest_penetration_m = 0.0;
+  /// Every impact in time order (the first kMaxRecordedImpacts of them).
+  std::vector<ImpactEvent> events;
+  static constexpr std::size_t kMaxRecordedImpacts = 100000;
+};
+
+/// What the adaptive integrator did (zero for the fixed-step ones): the substeps of the states
+/// the world kept (not those of time-of-impact searches or of samples between steps).
+struct StepStats {
+  long accepted = 0;
+  long rejected = 0;
+  double smallest_step_s = 0.0;  ///< 0 until a step was taken
+  double largest_step_s = 0.0;
 };
 
 class World {
@@ -87,17 +125,40 @@ class World {
   const WorldDef& def() const { return def_; }
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   const ContactStats& contact_stats() const { return stats_; }
+  /// Derivative evaluations dY/dt so far, counted per body (every stage of every step, impact
+  /// searches included): the work measure of `tumble study`.
+  long derivative_evaluations() const { return evaluations_; }
+  const StepStats& step_stats() const { return step_stats_; }
+  const Diagnostics& diagnostics() const { return diagnostics_; }
+  /// The contact tolerances of body i (they scale with its size).
+  const ContactTolerances& tolerances(std::size_t body) const { return tolerances_[body]; }
   double energy(std::size_t body) const { return bodies_[body].energy(def_.gravity); }
   double total_energy() const;
 
  private:
-  void advance_body(RigidBody& body, double h);
+  void advance_body(std::size_t body, double h);
+  // The body's integrator settings, with its controller state (adaptive).
+  Stepping stepping(std::size_t body) const;
+  // Integrates body i over h from s; `keep`: this is the state the world goes on from (its step
+  // statistics and diagnostics count), not a trial inside a time-of-impact search.
+  BodyState integrate_body(std::size_t body, const BodyDynamics& f, const BodyState& s, double h,
+                           bool keep);
+  // After a body's step: a non-finite state ends the run (exit 2); spin against dt is checked.
+  void check_state(std::size_t body);
+  void check_free_flight(std::size_t body, bool contact);
+  void record_impact(std::size_t body, double t_s, double approach_speed_mps);
 
   WorldDef def_;
   std::vector<RigidBody> bodies_;
+  std::vector<ContactTolerances> tolerances_;
+  std::vector<AdaptiveController> controllers_;
+  std::vector<double> flight_start_energy_;  // energy when the current contact-free stretch began
   long steps_ = 0;
   double time_ = 0.0;
+  long evaluations_ = 0;
   ContactStats stats_;
+  StepStats step_stats_;
+  Diagnostics diagnostics_;
 };
 
 }  // namespace tumble

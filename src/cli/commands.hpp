@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "tumble/diagnostics.hpp"
 #include "tumble/scene.hpp"
 
 namespace tumble::cli {
@@ -29,6 +30,7 @@ struct CommonOptions {
   std::string size;  // "WxH"
   std::string integrator;
   bool quiet = false;
+  bool strict = false;  // render/simulate: a diagnostic warning ends the run with exit 4
 };
 
 /// Registers the common options on a subcommand.
@@ -38,6 +40,11 @@ void add_common_options(CLI::App& cmd, CommonOptions& o);
 Scene load_scene(const CommonOptions& o);
 /// The output folder, created. Throws tumble::Error (Environment) when it cannot be.
 std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene);
+/// Registers --strict (render and simulate).
+void add_strict_option(CLI::App& cmd, CommonOptions& o);
+/// Prints each diagnostic once as `tumble: warning: message (fix)` unless quiet; returns the
+/// command's exit code: 4 when --strict and there was a warning, else 0.
+int report_diagnostics(const CommonOptions& o, const Diagnostics& diagnostics);
 
 struct SimulateOptions {
   CommonOptions common;

@@ -26,7 +26,7 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_option("--fps", o.fps, "Frames per second (overrides the scene)");
   cmd.add_option("--size", o.size, "Image size WxH, e.g. 1280x720 (overrides the scene)");
   cmd.add_option("--integrator", o.integrator,
-                 "euler | symplectic-euler | midpoint | rk4 (overrides the scene)");
+                 "euler | symplectic-euler | midpoint | rk4 | adaptive (overrides the scene)");
   cmd.add_flag("--quiet,-q", o.quiet, "Print nothing but errors");
 }
 
@@ -52,7 +52,7 @@ Scene load_scene(const CommonOptions& o) {
     const auto integrator = parse_integrator(o.integrator);
     if (!integrator)
       bad("unknown integrator \"" + o.integrator +
-          "\" (expected one of: euler, symplectic-euler, midpoint, rk4)");
+          "\" (expected one of: euler, symplectic-euler, midpoint, rk4, adaptive)");
     sim.integrator = *integrator;
   }
   if (o.fps) {
@@ -77,6 +77,18 @@ Scene load_scene(const CommonOptions& o) {
     scene.render.height = static_cast<int>(h);
   }
   return scene;
+}
+
+void add_strict_option(CLI::App& cmd, CommonOptions& o) {
+  cmd.add_flag("--strict", o.strict,
+               "A diagnostic warning ends the run with exit 4 (outputs are still written)");
+}
+
+int report_diagnostics(const CommonOptions& o, const Diagnostics& diagnostics) {
+  if (!o.quiet)
+    for (const Diagnostic& d : diagnostics.list())
+      std::fprintf(stderr, "tumble: warning: %s (%s)\n", d.message.c_str(), d.fix.c_str());
+  return o.strict && !diagnostics.empty() ? 4 : 0;
 }
 
 std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene) {

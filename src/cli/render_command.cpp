@@ -48,6 +48,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "render", "Simulate and render: clip.mp4, PNG frames, stills and run.json");
   add_common_options(*cmd, o.common);
+  add_strict_option(*cmd, o.common);
   cmd->add_flag("--png", o.png, "Also write every frame as frames/frame_NNNNN.png");
   cmd->add_flag("--no-mp4", o.no_mp4, "Do not write clip.mp4");
   cmd->add_option("--still", o.stills, "Write still_<T>.png of the state at time T (repeatable)");
@@ -253,7 +254,7 @@ int run_render(const RenderOptions& o) {
                 frames_to_draw, width, height, fps, stills_text.c_str(),
                 gl.info().gl_renderer.c_str(), report.times.total_s, dir.c_str());
   }
-  return 0;
+  return report_diagnostics(o.common, world.diagnostics());
 }
 
 }  // namespace tumble::cli

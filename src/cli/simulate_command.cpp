@@ -14,6 +14,7 @@ void add_simulate_command(CLI::App& app, SimulateOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "simulate", "Simulate only (no GL): trajectory.csv and run.json in the output folder");
   add_common_options(*cmd, o.common);
+  add_strict_option(*cmd, o.common);
   cmd->add_option("--rate", o.rate_hz, "Sample rate in Hz (default: the scene's fps)");
   cmd->add_flag("--every-step", o.every_step, "Sample at every step boundary instead");
 }
@@ -72,7 +73,7 @@ int run_simulate(const SimulateOptions& o) {
   if (!o.common.quiet)
     std::printf("tumble: wrote %s (%ld rows) and %s\n", (dir / "trajectory.csv").c_str(),
                 csv.rows(), (dir / "run.json").c_str());
-  return 0;
+  return report_diagnostics(o.common, world.diagnostics());
 }
 
 }  // namespace tumble::cli

@@ -20,6 +20,9 @@ ordered_json settings_json(const Scene& s) {
   j["simulation"] = {{"duration_s", sim.duration_s},
                      {"dt_s", sim.dt_s},
                      {"integrator", to_string(sim.integrator)},
+                     {"tolerance", sim.integrator == Integrator::Adaptive
+                                       ? ordered_json(sim.tolerance)
+                                       : ordered_json()},
                      {"rotation", to_string(sim.rotation)},
                      {"gravity", vec(sim.gravity)},
                      {"linear_drag", sim.linear_drag},
@@ -56,9 +59,19 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
     j["settings"] = settings_json(*r.scene);
   }
   j["counts"] = {{"steps", r.steps},
+                 {"derivative_evaluations", r.world ? r.world->derivative_evaluations() : 0},
                  {"samples", r.samples},
                  {"sample_rate_hz", r.sample_rate_hz},
                  {"every_step", r.every_step}};
+  if (r.world && r.world->def().integrator == Integrator::Adaptive) {
+    const StepStats& st = r.world->step_stats();
+    j["adaptive"] = {{"tolerance", r.world->def().tolerance},
+                     {"largest_step_s", r.world->def().dt_s},
+                     {"accepted_steps", st.accepted},
+                     {"rejected_steps", st.rejected},
+                     {"smallest_step_taken_s", st.smallest_step_s},
+                     {"largest_step_taken_s", st.largest_step_s}};
+  }
   j["gl"] = r.gl_renderer.empty() ? ordered_json()
                                   : ordered_json{{"vendor", r.gl_vendor},
                                                  {"renderer", r.gl_renderer},
@@ -80,6 +93,16 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
                   {"max_contact_energy_gain_J", r.contact.max_energy_gain_J},
                   {"contacts", r.contact.impacts},
                   {"deepest_penetration_m", r.contact.deepest_penetration_m}};
+  ordered_json diagnostics = ordered_json::array();
+  if (r.world)
+    for (const Diagnostic& d : r.world->diagnostics().list())
+      diagnostics.push_back({{"code", d.code},
+                             {"severity", d.severity},
+                             {"message", d.message},
+                             {"t_s", d.t_s},
+                             {"fix", d.fix},
+                             {"occurrences", d.occurrences}});
+  j["diagnostics"] = diagnostics;
   ordered_json outputs = ordered_json::array();
   for (const auto& p : r.outputs)
     outputs.push_back({{"path", p.string()}, {"sha256", sha256_file_hex(p)}});

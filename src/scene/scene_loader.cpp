@@ -39,7 +39,8 @@ SimulationSettings read_simulation(const toml::table& table, const std::string& 
                                    const TimeOverrides& overrides) {
   const TableReader r(
       table, "[simulation]", file,
-      {"duration", "dt", "integrator", "rotation", "gravity", "linear_drag", "angular_drag"});
+      {"duration", "dt", "integrator", "tolerance", "rotation", "gravity", "linear_drag",
+       "angular_drag"});
   SimulationSettings s;
   // The upper bound (about 11.6 days) keeps the step and frame counts of a run sane.
   s.duration_s = r.number("duration", {0.0, 1e6, true, false}).value_or(s.duration_s);
@@ -55,6 +56,8 @@ SimulationSettings read_simulation(const toml::table& table, const std::string& 
                                                        format_number(s.duration_s) + " s)");
   if (const auto i = r.choice("integrator", kIntegratorNames))
     s.integrator = static_cast<Integrator>(*i);  // kIntegratorNames is in enum order
+  // Below 1e-14 a local error is round-off, not truncation; above 0.1 nothing is controlled.
+  s.tolerance = r.number("tolerance", {1e-14, 0.1, false, false}).value_or(s.tolerance);
   if (const auto i = r.choice("rotation", kRotationNames))
     s.rotation = static_cast<RotationRep>(*i);
   s.gravity = r.vec3("gravity").value_or(s.gravity);

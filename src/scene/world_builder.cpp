@@ -19,6 +19,7 @@ BodyDef make_body(const BodySpec& spec, double default_restitution) {
   if (b.particle) {
     assert(spec.mass);  // the loader rejects a density for a particle
     b.mass_kg = *spec.mass;
+    b.length_m = spec.size.maxCoeff();
     return b;
   }
   assert(spec.shape == Shape::Box);  // meshes are rejected by the loader until they land
@@ -37,6 +38,7 @@ WorldDef make_world_def(const Scene& scene) {
   def.dt_s = sim.dt_s;
   def.integrator = sim.integrator;
   def.rotation = sim.rotation;
+  def.tolerance = sim.tolerance;
   def.gravity = sim.gravity;
   def.linear_drag = sim.linear_drag;
   def.angular_drag = sim.angular_drag;
@@ -47,10 +49,14 @@ WorldDef make_world_def(const Scene& scene) {
     if (!def.floor) continue;
     // A body must start on or above the floor: a start inside it has no physical meaning.
     const RigidBody body(def.bodies.back());
+    const double touch =
+        ContactTolerances::for_body(body_length(body.vertices(), def.bodies.back().length_m),
+                                    def.gravity, def.dt_s)
+            .touch_m;
     double lowest = INFINITY;
     for (const Vec3& v : body.vertices()) lowest = std::min(lowest, (body.state.R * v).y());
     const double depth = def.floor->height - (body.state.x.y() + lowest);
-    if (depth > ContactTolerances::kTouch) {
+    if (depth > touch) {
       std::ostringstream msg;
       msg << "body \"" << spec.name << "\" starts " << depth
           << " m inside the floor (its lowest point is at y = " << body.state.x.y() + lowest

@@ -74,6 +74,7 @@ void BodyDynamics::contact_forces(const BodyState& s, double* out) const {
 }
 
 Rate BodyDynamics::operator()(const BodyState& s) const {
+  if (evaluations_) ++*evaluations_;
   Kinematics k = kinematics(s);
   if (resting_ && resting_->count > 0) {
     double f[8];

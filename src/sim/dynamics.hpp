@@ -54,9 +54,10 @@ Mat3 rotation_of(const BodyState& s, RotationRep rep);
 
 class BodyDynamics {
  public:
+  /// `evaluations`, when given, counts every evaluation of dY/dt (the work measure).
   BodyDynamics(const RigidBody& body, RotationRep rep, const ForceModel& forces,
-               const ContactSet* resting)
-      : body_(body), rep_(rep), forces_(forces), resting_(resting) {}
+               const ContactSet* resting, long* evaluations = nullptr)
+      : body_(body), rep_(rep), forces_(forces), resting_(resting), evaluations_(evaluations) {}
 
   Rate operator()(const BodyState& s) const;
   /// The normal contact force at each resting point for state s (N), in resting-contact order.
@@ -81,6 +82,7 @@ class BodyDynamics {
   RotationRep rep_;
   const ForceModel& forces_;
   const ContactSet* resting_;
+  long* evaluations_;
 };
 
 }  // namespace tumble

@@ -10,8 +10,6 @@
 namespace tumble {
 namespace {
 
-using Tol = ContactTolerances;
-
 double kinetic_energy(const RigidBody& b) {
   return b.energy(Vec3::Zero());
 }
@@ -51,6 +49,14 @@ ContactSet vertices_below(const RigidBody& b, const BodyState& s, double floor_h
   return below;
 }
 
+double approach_speed(const RigidBody& b, const ContactSet& c) {
+  const Vec3 omega = b.angular_velocity();
+  double fastest = 0.0;
+  for (int i : c.indices())
+    fastest = std::max(fastest, -point_velocity(b, omega, b.state.R * b.vertices()[i]).y());
+  return fastest;
+}
+
 ContactSet all_vertices(const RigidBody& b, double floor_height) {
   ContactSet all;
   all.floor_height = floor_height;
@@ -59,13 +65,14 @@ ContactSet all_vertices(const RigidBody& b, double floor_height) {
   return all;
 }
 
-ContactSet touching_vertices(const RigidBody& b, double floor_height, double rest_speed) {
+ContactSet touching_vertices(const RigidBody& b, double floor_height, double touch_m,
+                             double rest_speed) {
   ContactSet c;
   c.floor_height = floor_height;
   const Vec3 omega = b.angular_velocity();
   const int n = static_cast<int>(b.vertices().size());
   for (int i = 0; i < n && c.count < 8; ++i) {
-    if (vertex_gap(b, b.state, i, floor_height) > Tol::kTouch) continue;
+    if (vertex_gap(b, b.state, i, floor_height) > touch_m) continue;
     const Vec3 r = b.state.R * b.vertices()[i];
     if (std::abs(point_velocity(b, omega, r).y()) > rest_speed) continue;
     c.vertex[c.count++] = i;
@@ -73,13 +80,13 @@ ContactSet touching_vertices(const RigidBody& b, double floor_height, double res
   return c;
 }
 
-ContactSet held_points(const RigidBody& b, const ContactSet& c) {
+ContactSet held_points(const RigidBody& b, const ContactSet& c, double hold_speed) {
   ContactSet held;
   held.floor_height = c.floor_height;
   const Vec3 omega = b.angular_velocity();
   for (int i = 0; i < c.count; ++i) {
     const Vec3 r = b.state.R * b.vertices()[c.vertex[i]];
-    if (point_velocity(b, omega, r).y() <= Tol::kHoldSpeed) held.vertex[held.count++] = c.vertex[i];
+    if (point_velocity(b, omega, r).y() <= hold_speed) held.vertex[held.count++] = c.vertex[i];
   }
   return held;
 }
@@ -192,12 +199,12 @@ double lift_out_of_floor(RigidBody& b, const ContactSet& c, double floor_height)
   return deepest;
 }
 
-bool can_rest(const RigidBody& b, const ContactSet& c, const Vec3& gravity) {
+bool can_rest(const RigidBody& b, const ContactSet& c, const Vec3& gravity, double sleep_speed) {
   if (c.count < 3 || gravity.y() >= 0.0) return false;
   const Vec3 omega = b.angular_velocity();
   double reach = 0.0;
   for (const Vec3& v : b.vertices()) reach = std::max(reach, v.norm());
-  if (b.velocity().norm() + omega.norm() * reach > Tol::kSleepSpeed) return false;
+  if (b.velocity().norm() + omega.norm() * reach > sleep_speed) return false;
   // Convex hull of the resting points seen from above (Andrew's monotone chain), then the centre
   // of mass must lie strictly inside it: on an edge the body could still tip.
   std::vector<Eigen::Vector2d> p;

@@ -18,15 +18,19 @@ double min_gap(const RigidBody& b, const BodyState& s, double floor_height, cons
 ContactSet vertices_below(const RigidBody& b, const BodyState& s, double floor_height,
                           const ContactSet& skip);
 
+/// The fastest approach speed (> 0) of the points of `c`, 0 when none approaches.
+double approach_speed(const RigidBody& b, const ContactSet& c);
+
 /// Every contact vertex of the body (at most the first 8).
 ContactSet all_vertices(const RigidBody& b, double floor_height);
 
-/// Vertices of the body's current state that touch the floor (gap <= kTouch); with a finite
+/// Vertices of the body's current state that touch the floor (gap <= touch_m); with a finite
 /// `rest_speed`, only those whose normal speed is at most that (resting candidates).
-ContactSet touching_vertices(const RigidBody& b, double floor_height, double rest_speed);
+ContactSet touching_vertices(const RigidBody& b, double floor_height, double touch_m,
+                             double rest_speed);
 
-/// The points of `c` that do not separate (normal speed <= kHoldSpeed): those the floor holds.
-ContactSet held_points(const RigidBody& b, const ContactSet& c);
+/// The points of `c` that do not separate (normal speed <= hold_speed): those the floor holds.
+ContactSet held_points(const RigidBody& b, const ContactSet& c, double hold_speed);
 
 /// Resolves an impact at the touching vertices `c` in the current state: normal impulses from a
 /// velocity-level LCP with Newton restitution (e = 0 below `rest_speed`, or everywhere when it is
@@ -50,7 +54,7 @@ double lift_out_of_floor(RigidBody& b, const ContactSet& c, double floor_height)
 
 /// True when the resting points support the body in static equilibrium: at least 3 of them
 /// around the centre of mass (strictly inside their hull, seen from above), gravity pressing
-/// down, and no point of the body moving faster than kSleepSpeed.
-bool can_rest(const RigidBody& b, const ContactSet& c, const Vec3& gravity);
+/// down, and no point of the body moving faster than sleep_speed.
+bool can_rest(const RigidBody& b, const ContactSet& c, const Vec3& gravity, double sleep_speed);
 
 }  // namespace tumble

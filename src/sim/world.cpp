@@ -3,19 +3,86 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "dynamics.hpp"
 #include "floor_contact.hpp"
 #include "integrators.hpp"
+#include "tumble/error.hpp"
 
 namespace tumble {
+namespace {
 
 using Tol = ContactTolerances;
+
+// Standard gravity: the speed scale of tolerances when a scene has none, and the 1 m reference.
+constexpr double kStandardGravity = 9.81;
+
+std::string fmt(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+// Largest dt·|ω| (radians turned per step) each fixed-step integrator follows faithfully: the
+// orientation error per step grows as (dt·|ω|)^(order+1), so past these the motion in a clip is
+// visibly wrong (first-order methods also gain energy fast). The adaptive integrator sizes its
+// own substeps.
+double max_turn_per_step(Integrator i) {
+  switch (i) {
+    case Integrator::Euler:
+    case Integrator::SymplecticEuler:
+      return 0.1;
+    case Integrator::Midpoint:
+      return 0.3;
+    case Integrator::Rk4:
+      return 1.0;
+    case Integrator::Adaptive:
+      return INFINITY;
+  }
+  return INFINITY;
+}
+
+bool finite(const BodyState& s) {
+  return s.x.allFinite() && s.P.allFinite() && s.L.allFinite() && s.q.coeffs().allFinite() &&
+         s.R.allFinite();
+}
+
+}  // namespace
+
+ContactTolerances ContactTolerances::for_body(double length_m, const Vec3& gravity, double dt_s) {
+  const double g = gravity.norm() > 0.0 ? gravity.norm() : kStandardGravity;
+  // u = sqrt(g ℓ) in units of its value for ℓ = 1 m under standard gravity.
+  const double speed = std::sqrt(g * length_m / kStandardGravity);
+  ContactTolerances t;
+  t.length_m = length_m;
+  t.toi_time_s = 1e-12 * length_m / speed;
+  t.touch_m = 1e-6 * length_m;
+  t.rest_speed_mps = std::max(1e-2 * speed, 2.0 * gravity.norm() * dt_s);
+  t.hold_speed_mps = 1e-6 * speed;
+  t.sleep_speed_mps = 1e-3 * speed;
+  return t;
+}
+
+double body_length(const std::vector<Vec3>& vertices, double fallback) {
+  if (vertices.empty()) return fallback;
+  Vec3 lo = vertices.front(), hi = vertices.front();
+  for (const Vec3& v : vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const double extent = (hi - lo).maxCoeff();
+  return extent > 0.0 ? extent : fallback;
+}
 
 World::World(const WorldDef& def) : def_(def) {
   assert(def.dt_s > 0.0);
   bodies_.reserve(def.bodies.size());
-  for (const BodyDef& b : def.bodies) bodies_.emplace_back(b);
+  for (const BodyDef& b : def.bodies) {
+    bodies_.emplace_back(b);
+    const double length = b.length_m > 0.0 ? b.length_m : body_length(b.vertices, 1.0);
+    tolerances_.push_back(Tol::for_body(length, def.gravity, def.dt_s));
+    flight_start_energy_.push_back(bodies_.back().energy(def.gravity));
+  }
+  controllers_.resize(bodies_.size());
 }
 
 double World::total_energy() const {
@@ -25,7 +92,7 @@ double World::total_energy() const {
 }
 
 void World::step() {
-  for (RigidBody& b : bodies_) advance_body(b, def_.dt_s);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) advance_body(i, def_.dt_s);
   ++steps_;
   // Time from the step count, never accumulated: t_n = n·dt exactly as the sampler computes it.
   time_ = static_cast<double>(steps_) * def_.dt_s;
@@ -33,22 +100,132 @@ void World::step() {
 
 void World::advance(double h) {
   assert(h > 0.0 && h <= def_.dt_s * (1.0 + 1e-12));
-  for (RigidBody& b : bodies_) advance_body(b, h);
+  for (std::size_t i = 0; i < bodies_.size(); ++i) advance_body(i, h);
   time_ += h;
 }
 
-void World::advance_body(RigidBody& b, double h) {
+Stepping World::stepping(std::size_t i) const {
+  const ContactTolerances& tol = tolerances_[i];
+  Stepping how;
+  how.method = def_.integrator;
+  how.tolerance = def_.tolerance;
+  how.length_m = tol.length_m;
+  how.speed_mps = std::sqrt(kStandardGravity) * tol.hold_speed_mps / 1e-6;  // sqrt(g ℓ)
+  // Substeps a millionth of the largest are a discontinuity the controller cannot resolve.
+  how.min_step_s = 1e-6 * def_.dt_s;
+  how.controller = controllers_[i];
+  return how;
+}
+
+BodyState World::integrate_body(std::size_t i, const BodyDynamics& f, const BodyState& s,
+                                double h, bool keep) {
+  StepInfo info;
+  const BodyState out = integrate(f, s, h, stepping(i), &info);
+  if (!keep) return out;
+  // Statistics and diagnostics only for the states the world keeps, not for trial steps.
+  controllers_[i] = info.controller;
+  if (def_.integrator == Integrator::Adaptive) {
+    step_stats_.accepted += info.accepted;
+    step_stats_.rejected += info.rejected;
+    if (info.smallest_step_s > 0.0)
+      step_stats_.smallest_step_s = step_stats_.smallest_step_s == 0.0
+                                        ? info.smallest_step_s
+                                        : std::min(step_stats_.smallest_step_s, info.smallest_step_s);
+    step_stats_.largest_step_s = std::max(step_stats_.largest_step_s, info.largest_step_s);
+    if (info.pinned)
+      diagnostics_.warn("adaptive_step_pinned", time_,
+                        "the adaptive step of body \"" + bodies_[i].name() +
+                            "\" was pinned at its minimum (" + fmt("%.3g", stepping(i).min_step_s) +
+                            " s) with its error above the tolerance",
+                        "loosen the tolerance (now " + fmt("%.3g", def_.tolerance) +
+                            ") or use rk4 with a small fixed dt");
+  }
+  // Renormalisation removes drift every step; a large one means the step misrepresents the turn:
+  // 1 % in one step: the unrenormalised step was no longer near a rotation (a shear or scale of
+  // 1 %), which happens only past the turn-per-step limits; the seed's coarse midpoint at
+  // dt = 1/30 s peaks at 0.23 %.
+  constexpr double kMaxDrift = 1e-2;
+  if (info.orientation_drift > kMaxDrift)
+    diagnostics_.warn("rotation_drift", time_,
+                      "the orientation of body \"" + bodies_[i].name() + "\" drifted " +
+                          fmt("%.2g", info.orientation_drift) + " from " +
+                          (def_.rotation == RotationRep::Quaternion ? "unit length"
+                                                                    : "orthonormal") +
+                          " in one step",
+                      "use rk4 or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
+  return out;
+}
+
+void World::check_state(std::size_t i) {
+  RigidBody& b = bodies_[i];
+  if (!finite(b.state)) {
+    const double t = time_;
+    throw Error(ErrorKind::BadInput,
+                "the state of body \"" + b.name() + "\" stopped being finite near t = " +
+                    fmt("%.6g", t) + " s (integrator " + std::string(to_string(def_.integrator)) +
+                    ", dt = " + fmt("%.3g", def_.dt_s) +
+                    " s); use rk4 or adaptive, or a smaller dt, and check masses, sizes and "
+                    "velocities for extreme values");
+  }
+  if (b.is_particle()) return;
+  const double turn = def_.dt_s * b.angular_velocity().norm();
+  const double limit = max_turn_per_step(def_.integrator);
+  if (turn > limit)
+    diagnostics_.warn("step_too_large_for_spin", time_,
+                      "body \"" + b.name() + "\" turns " + fmt("%.3g", turn) +
+                          " rad per step (dt·|ω|), more than " +
+                          std::string(to_string(def_.integrator)) + " follows faithfully (" +
+                          fmt("%.3g", limit) + ")",
+                      "use dt <= " + fmt("%.3g", 0.5 * limit / b.angular_velocity().norm()) +
+                          " s, or adaptive");
+}
+
+void World::check_free_flight(std::size_t i, bool contact) {
+  RigidBody& b = bodies_[i];
+  const double e = b.energy(def_.gravity);
+  if (contact) {
+    flight_start_energy_[i] = e;
+    return;
+  }
+  // Gravity is conservative and drag only removes energy: in free flight any gain is the
+  // integrator's. Scale: the body's kinetic energy plus m·g·ℓ (so a body at rest in zero
+  // gravity does not make round-off look large). Threshold 0.1 %: rk4 and midpoint stay orders
+  // below it in every example scene, explicit Euler at a coarse dt crosses it.
+  constexpr double kMaxRelativeGain = 1e-3;
+  const double g = def_.gravity.norm() > 0.0 ? def_.gravity.norm() : kStandardGravity;
+  const double scale = b.energy(Vec3::Zero()) + b.mass() * g * tolerances_[i].length_m;
+  const double gain = e - flight_start_energy_[i];
+  if (gain > kMaxRelativeGain * scale)
+    diagnostics_.warn("free_flight_energy_gain", time_,
+                      "body \"" + b.name() + "\" gained " + fmt("%.3g", gain) + " J (" +
+                          fmt("%.2g", 100.0 * gain / scale) + " %) in free flight",
+                      "use rk4 or adaptive, or a smaller dt (now " + fmt("%.3g", def_.dt_s) +
+                          " s)");
+}
+
+void World::record_impact(std::size_t i, double t, double speed) {
+  ++stats_.impacts;
+  if (stats_.events.size() < ContactStats::kMaxRecordedImpacts)
+    stats_.events.push_back({t, static_cast<int>(i), speed});
+}
+
+void World::advance_body(std::size_t index, double h) {
+  RigidBody& b = bodies_[index];
   if (b.at_rest) return;  // static equilibrium: the exact motion over any step is none
   const ForceModel forces{def_.gravity, def_.linear_drag, def_.angular_drag};
   if (!def_.floor) {
-    b.state =
-        integrate(BodyDynamics(b, def_.rotation, forces, nullptr), b.state, h, def_.integrator);
+    b.state = integrate_body(
+        index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_), b.state, h, true);
+    check_state(index);
+    check_free_flight(index, false);
     return;
   }
+  const Tol& tol = tolerances_[index];
   const double floor_y = def_.floor->height;
   const double mu = def_.floor->friction;
-  const double rest_speed = Tol::rest_speed(def_.gravity, def_.dt_s);
-  if (can_rest(b, touching_vertices(b, floor_y, rest_speed), def_.gravity)) {
+  const double rest_speed = tol.rest_speed_mps;
+  if (can_rest(b, touching_vertices(b, floor_y, tol.touch_m, rest_speed), def_.gravity,
+               tol.sleep_speed_mps)) {
     b.state.P.setZero();
     b.state.L.setZero();
     b.at_rest = true;
@@ -56,48 +233,53 @@ void World::advance_body(RigidBody& b, double h) {
   }
   double remaining = h;
   int events = 0;
+  bool contact = false;
   while (remaining > 0.0) {
     // Resting contacts for this stretch: touching points with a small normal speed. Any that
     // still approach are stopped first (an inelastic micro-impact), then held by contact forces.
-    ContactSet resting = touching_vertices(b, floor_y, rest_speed);
+    ContactSet resting = touching_vertices(b, floor_y, tol.touch_m, rest_speed);
     if (resting.count > 0) {
+      contact = true;
       const double e0 = b.energy(def_.gravity);
       double impulse[8];
       resolve_impact(b, resting, INFINITY, mu, impulse);
       stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
       // Only points that do not move away are held: a force at a separating point would work.
-      resting = held_points(b, resting);
+      resting = held_points(b, resting, tol.hold_speed_mps);
     }
     if (mu > 0.0) classify_sliding(b, resting, mu, def_.gravity.norm() * remaining);
-    const BodyDynamics dynamics(b, def_.rotation, forces, resting.count > 0 ? &resting : nullptr);
+    const BodyDynamics dynamics(b, def_.rotation, forces, resting.count > 0 ? &resting : nullptr,
+                                &evaluations_);
     const BodyState start = b.state;
-    auto advanced = [&](double tau) { return integrate(dynamics, start, tau, def_.integrator); };
+    auto advanced = [&](double tau, bool keep) {
+      return integrate_body(index, dynamics, start, tau, keep);
+    };
 
     // Trial over the whole remaining stretch; an impact is a non-resting vertex crossing the plane.
     double tau = remaining;
-    BodyState end = advanced(tau);
+    BodyState end = advanced(tau, false);
     const ContactSet crossing = vertices_below(b, end, floor_y, resting);
     const bool impact = crossing.count > 0;
     if (impact) {
       // Time of impact by the Illinois variant of regula falsi on the lowest crossing vertex's
       // gap, integrating from the stretch's start with the step's own integrator. Bracket
       // [lo, hi]: gap(lo) >= 0 > gap(hi), so a crossing lies inside. Stops when the bracket is
-      // kToiTime wide: a vertex is then within speed·kToiTime (< 1e-10 m below 100 m/s) of it.
+      // toi_time_s wide: a vertex is then within speed·toi_time_s (1e-10 ℓ below 100 u) of it.
       double lo = 0.0, hi = remaining;
       // The gap is that of the vertices found below the plane at the end (a touching vertex that
       // moves away must not stop the search at once).
       double g_lo = std::max(min_gap(b, start, floor_y, crossing), 0.0);
       double g_hi = min_gap(b, end, floor_y, crossing);
-      BodyState at_lo = start;
       int side = 0;
-      for (int iter = 0; iter < 200 && hi - lo > Tol::kToiTime; ++iter) {
+      int iter = 0;
+      for (; iter < 200 && hi - lo > tol.toi_time_s; ++iter) {
         double t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
         // Bisect every few iterations so a stubborn (curved) gap still shrinks the bracket.
         if (iter % 4 == 3 || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
-        const BodyState s = advanced(t);
+        const BodyState s = advanced(t, false);
         const double g = min_gap(b, s, floor_y, crossing);
         if (g >= 0.0) {
-          lo = t, g_lo = g, at_lo = s;
+          lo = t, g_lo = g;
           if (side == -1) g_hi *= 0.5;
           side = -1;
         } else {
@@ -106,8 +288,16 @@ void World::advance_body(RigidBody& b, double h) {
           side = +1;
         }
       }
+      if (iter == 200)
+        diagnostics_.warn("contact_tolerance_missed", time_ + (h - remaining),
+                          "the time of an impact of body \"" + b.name() +
+                              "\" could not be located to " + fmt("%.3g", tol.toi_time_s) + " s",
+                          "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       tau = lo;
-      end = at_lo;
+      // The kept state is recomputed with statistics (deterministic: the same as the trial's).
+      end = lo > 0.0 ? advanced(lo, true) : start;
+    } else {
+      end = advanced(tau, true);
     }
     b.state = end;
     // Static friction of the resting points that do not slide, as an impulse bounded by mu times
@@ -124,6 +314,7 @@ void World::advance_body(RigidBody& b, double h) {
         }
       apply_friction(b, sticking, impulse, mu);
     }
+    const double t_event = time_ + (h - remaining) + tau;
     remaining = impact ? remaining - tau : 0.0;
     if (resting.count > 0) {
       // Integration drift of held points is removed by a lift; it counts as penetration.
@@ -131,19 +322,34 @@ void World::advance_body(RigidBody& b, double h) {
       const double depth = lift_out_of_floor(b, resting, floor_y);
       stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
       stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
+      // A lift of more than 1e-4 ℓ in one stretch is drift the contact model should not see.
+      if (depth > 1e-4 * tol.length_m)
+        diagnostics_.warn("contact_tolerance_missed", t_event,
+                          "resting points of body \"" + b.name() + "\" sank " +
+                              fmt("%.3g", depth) + " m into the floor in one step",
+                          "use rk4 or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
     }
     if (impact) {
-      ContactSet touching = touching_vertices(b, floor_y, INFINITY);
+      contact = true;
+      ContactSet touching = touching_vertices(b, floor_y, tol.touch_m, INFINITY);
+      const double speed = approach_speed(b, touching);
       const double e0 = b.energy(def_.gravity);
       double impulse[8];
-      resolve_impact(b, touching, events >= Tol::kMaxEventsPerStep ? INFINITY : rest_speed, mu,
-                     impulse);
+      const bool capped = events >= Tol::kMaxEventsPerStep;
+      resolve_impact(b, touching, capped ? INFINITY : rest_speed, mu, impulse);
       stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
-      ++stats_.impacts;
+      record_impact(index, t_event, speed);
+      if (events == Tol::kMaxEventsPerStep)
+        diagnostics_.warn("event_cap_hit", t_event,
+                          "body \"" + b.name() + "\" met " +
+                              std::to_string(Tol::kMaxEventsPerStep) +
+                              " impacts in one step; the rest of the step was made inelastic",
+                          "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       if (++events >= 2 * Tol::kMaxEventsPerStep) {
         // Pathological: finish the step in free flight and lift out, rather than loop on.
-        b.state = integrate(BodyDynamics(b, def_.rotation, forces, nullptr), b.state, remaining,
-                            def_.integrator);
+        b.state = integrate_body(
+            index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_), b.state,
+            remaining, true);
         const double depth = std::max(0.0, -min_gap(b, b.state, floor_y, all_vertices(b, floor_y)));
         b.state.x.y() += depth;
         stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
@@ -151,6 +357,8 @@ void World::advance_body(RigidBody& b, double h) {
       }
     }
   }
+  check_state(index);
+  check_free_flight(index, contact);
 }
 
 }  // namespace tumble

@@ -418,7 +418,7 @@ TEST(SceneLoader, DtMustNotExceedDuration) {
 TEST(SceneLoader, UnknownIntegratorListsTheChoices) {
   EXPECT_TRUE(FailsAt(with_box("[simulation]\nintegrator = \"rk5\"\n"), 2, 14,
                       R"(unknown integrator "rk5" (expected one of: euler, symplectic-euler, )"
-                      R"(midpoint, rk4))"));
+                      R"(midpoint, rk4, adaptive))"));
 }
 
 TEST(SceneLoader, UnknownRotationListsTheChoices) {

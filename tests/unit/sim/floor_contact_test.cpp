@@ -114,7 +114,7 @@ TEST(Bounce, TiltedSpinningDropComesToRestOnAFace) {
   for (int i = 0; i < 8000; ++i) w.step();
   expect_resting_on_a_face(w);
   // At most the potential energy of a box lying on a face, raised by the touch tolerance.
-  EXPECT_LT(w.total_energy(), 9.81 * (0.5 + ContactTolerances::kTouch));
+  EXPECT_LT(w.total_energy(), 9.81 * (0.5 + w.tolerances(0).touch_m));
   EXPECT_LT(w.contact_stats().deepest_penetration_m, 1e-6);
 }
 
