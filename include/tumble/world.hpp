@@ -22,6 +22,7 @@
 namespace tumble {
 
 struct Stepping;
+struct StepInfo;
 class BodyDynamics;
 
 struct FloorDef {
@@ -139,10 +140,11 @@ class World {
   void advance_body(std::size_t body, double h);
   // The body's integrator settings, with its controller state (adaptive).
   Stepping stepping(std::size_t body) const;
-  // Integrates body i over h from s; `keep`: this is the state the world goes on from (its step
-  // statistics and diagnostics count), not a trial inside a time-of-impact search.
+  // Integrates body i over h from s (trial states of impact searches included).
   BodyState integrate_body(std::size_t body, const BodyDynamics& f, const BodyState& s, double h,
-                           bool keep);
+                           StepInfo* info) const;
+  // The world goes on from a step's state: its controller, statistics and diagnostics count.
+  void keep_step(std::size_t body, const StepInfo& info);
   // After a body's step: a non-finite state ends the run (exit 2); spin against dt is checked.
   void check_state(std::size_t body);
   void check_free_flight(std::size_t body, bool contact);

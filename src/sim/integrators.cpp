@@ -133,39 +133,46 @@ BodyState dormand_prince(const BodyDynamics& f, const BodyState& s0, double h, c
   AdaptiveController c = how.controller;
   BodyState s = s0;
   double t = 0.0;
-  double hs = c.h_next_s > 0.0 ? std::min(c.h_next_s, h) : h;
+  // The controller's wish; a substep is the wish, or what is left of the stretch when that is
+  // (a hair more than) less.
+  double wish = c.h_next_s > 0.0 ? c.h_next_s : h;
   Rate k[7];
   k[0] = f(s);
   while (t < h) {
-    // The last substep lands on h exactly; one a hair shorter than planned is taken whole.
-    const double planned = hs;
-    const bool last = h - t <= hs * (1.0 + 1e-9);
-    if (last) hs = h - t;
+    const bool last = h - t <= wish * (1.0 + 1e-9);
+    const double hs = last ? h - t : wish;
     for (int i = 1; i < 7; ++i) k[i] = f(combine(s, k, kA[i], i, hs, f));
     const double err = scaled_error(s, k, hs, f, how);
     const bool finite = std::isfinite(err);
     const bool at_floor = hs <= how.min_step_s;
     if ((finite && err <= 1.0) || at_floor) {
-      if (at_floor && !(err <= 1.0)) info.pinned = true;
+      // Pinned: the controller was held at its floor with the error above tolerance (not a
+      // stretch end shorter than the floor, which an impact can leave: femtoseconds).
+      const bool whole = hs >= wish * (1.0 - 1e-9);
+      if (at_floor && whole && !(err <= 1.0)) info.pinned = true;
       s = combine(s, k, kA[6], 6, hs, f);
       t = last ? h : t + hs;
       ++info.accepted;
-      info.smallest_step_s = info.smallest_step_s == 0.0 ? hs : std::min(info.smallest_step_s, hs);
-      info.largest_step_s = std::max(info.largest_step_s, hs);
+      // Step statistics are the controller's choices, not substeps cut short by the stretch.
+      if (whole) {
+        info.smallest_step_s =
+            info.smallest_step_s == 0.0 ? hs : std::min(info.smallest_step_s, hs);
+        info.largest_step_s = std::max(info.largest_step_s, hs);
+      }
       const double e = finite ? std::max(err, 1e-4) : 1.0;
       double ratio = std::pow(e, kExpo) / std::pow(c.err_prev, kBeta) / kSafe;
       ratio = std::clamp(ratio, 1.0 / kMaxRatio, 1.0 / kMinRatio);
       c.err_prev = e;
       const double proposal = std::max(hs / ratio, how.min_step_s);
       // A substep shortened to end the stretch says little about the next one's size.
-      c.h_next_s = last ? std::max(proposal, planned) : proposal;
-      hs = std::min(c.h_next_s, h - t);
+      c.h_next_s = whole ? proposal : std::max(proposal, wish);
+      wish = c.h_next_s;
       k[0] = k[6];  // FSAL: the last stage was evaluated at the new state
     } else {
       ++info.rejected;
       const double shrink = finite ? std::clamp(std::pow(err, kExpo) / kSafe, 1.0, 1.0 / kMinRatio)
                                    : 1.0 / kMinRatio;
-      hs = std::max(hs / shrink, how.min_step_s);
+      wish = std::max(hs / shrink, how.min_step_s);
     }
   }
   info.controller = c;

@@ -9,14 +9,18 @@
 namespace tumble {
 namespace {
 
-// Tolerance of the complementarity checks, relative to the problem's own scale: round-off in a
-// least-squares solve of a well-scaled 8×8 system stays far below 1e-9 of it.
-double tolerance(const LcpMatrix& A, const LcpVector& b) {
-  const double scale = std::max(A.cwiseAbs().maxCoeff(), b.cwiseAbs().maxCoeff());
-  return 1e-9 * std::max(scale, 1e-300);
+// Tolerances of the complementarity checks, each in its own units so that no mass or length
+// scale is preferred: residuals w = A f + b are compared with 1e-9 |b| (round-off in a
+// least-squares solve of a small system stays far below it), forces f with that divided by |A|.
+struct Tolerances {
+  double w, f;
+};
+Tolerances tolerance(const LcpMatrix& A, const LcpVector& b) {
+  const double w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  return {w, w / std::max(A.cwiseAbs().maxCoeff(), 1e-300)};
 }
 
-bool try_active_set(const LcpMatrix& A, const LcpVector& b, unsigned mask, double tol,
+bool try_active_set(const LcpMatrix& A, const LcpVector& b, unsigned mask, const Tolerances& tol,
                     LcpVector& f) {
   const int n = static_cast<int>(A.rows());
   int idx[kMaxLcpSize];
@@ -32,13 +36,13 @@ bool try_active_set(const LcpMatrix& A, const LcpVector& b, unsigned mask, doubl
   const Eigen::CompleteOrthogonalDecomposition<LcpMatrix> cod(As);
   const LcpVector fs = cod.solve(bs);
   // A rank-deficient set may have no exact solution: check the residual, not just the signs.
-  if (((As * fs - bs).cwiseAbs().array() > tol).any()) return false;
-  if ((fs.array() < -tol).any()) return false;
+  if (((As * fs - bs).cwiseAbs().array() > tol.w).any()) return false;
+  if ((fs.array() < -tol.f).any()) return false;
   f.setZero(n);
   for (int r = 0; r < k; ++r) f(idx[r]) = std::max(fs(r), 0.0);
   const LcpVector w = A * f + b;
   for (int i = 0; i < n; ++i)
-    if (!(mask & (1u << i)) && w(i) < -tol) return false;
+    if (!(mask & (1u << i)) && w(i) < -tol.w) return false;
   return true;
 }
 
@@ -49,7 +53,7 @@ LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b) {
   assert(n == A.cols() && n == b.rows() && n <= kMaxLcpSize);
   LcpVector f = LcpVector::Zero(n);
   if (n == 0 || (b.array() >= 0.0).all()) return f;  // nothing pushes into the floor
-  const double tol = tolerance(A, b);
+  const Tolerances tol = tolerance(A, b);
   const unsigned all = (1u << n) - 1u;
   // Largest active sets first: a body pressed flat uses all its points (one solve).
   for (int size = n; size >= 1; --size)

@@ -118,10 +118,11 @@ Stepping World::stepping(std::size_t i) const {
 }
 
 BodyState World::integrate_body(std::size_t i, const BodyDynamics& f, const BodyState& s,
-                                double h, bool keep) {
-  StepInfo info;
-  const BodyState out = integrate(f, s, h, stepping(i), &info);
-  if (!keep) return out;
+                                double h, StepInfo* info) const {
+  return integrate(f, s, h, stepping(i), info);
+}
+
+void World::keep_step(std::size_t i, const StepInfo& info) {
   // Statistics and diagnostics only for the states the world keeps, not for trial steps.
   controllers_[i] = info.controller;
   if (def_.integrator == Integrator::Adaptive) {
@@ -153,7 +154,6 @@ BodyState World::integrate_body(std::size_t i, const BodyDynamics& f, const Body
                                                                     : "orthonormal") +
                           " in one step",
                       "use rk4 or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
-  return out;
 }
 
 void World::check_state(std::size_t i) {
@@ -214,8 +214,10 @@ void World::advance_body(std::size_t index, double h) {
   if (b.at_rest) return;  // static equilibrium: the exact motion over any step is none
   const ForceModel forces{def_.gravity, def_.linear_drag, def_.angular_drag};
   if (!def_.floor) {
-    b.state = integrate_body(
-        index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_), b.state, h, true);
+    StepInfo info;
+    b.state = integrate_body(index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_),
+                             b.state, h, &info);
+    keep_step(index, info);
     check_state(index);
     check_free_flight(index, false);
     return;
@@ -251,13 +253,14 @@ void World::advance_body(std::size_t index, double h) {
     const BodyDynamics dynamics(b, def_.rotation, forces, resting.count > 0 ? &resting : nullptr,
                                 &evaluations_);
     const BodyState start = b.state;
-    auto advanced = [&](double tau, bool keep) {
-      return integrate_body(index, dynamics, start, tau, keep);
+    auto advanced = [&](double tau, StepInfo* info) {
+      return integrate_body(index, dynamics, start, tau, info);
     };
 
     // Trial over the whole remaining stretch; an impact is a non-resting vertex crossing the plane.
     double tau = remaining;
-    BodyState end = advanced(tau, false);
+    StepInfo end_info;
+    BodyState end = advanced(tau, &end_info);
     const ContactSet crossing = vertices_below(b, end, floor_y, resting);
     const bool impact = crossing.count > 0;
     if (impact) {
@@ -270,16 +273,20 @@ void World::advance_body(std::size_t index, double h) {
       // moves away must not stop the search at once).
       double g_lo = std::max(min_gap(b, start, floor_y, crossing), 0.0);
       double g_hi = min_gap(b, end, floor_y, crossing);
+      BodyState at_lo = start;
+      StepInfo lo_info;
+      lo_info.controller = controllers_[index];
       int side = 0;
       int iter = 0;
       for (; iter < 200 && hi - lo > tol.toi_time_s; ++iter) {
         double t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
         // Bisect every few iterations so a stubborn (curved) gap still shrinks the bracket.
         if (iter % 4 == 3 || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
-        const BodyState s = advanced(t, false);
+        StepInfo info;
+        const BodyState s = advanced(t, &info);
         const double g = min_gap(b, s, floor_y, crossing);
         if (g >= 0.0) {
-          lo = t, g_lo = g;
+          lo = t, g_lo = g, at_lo = s, lo_info = info;
           if (side == -1) g_hi *= 0.5;
           side = -1;
         } else {
@@ -294,12 +301,11 @@ void World::advance_body(std::size_t index, double h) {
                               "\" could not be located to " + fmt("%.3g", tol.toi_time_s) + " s",
                           "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       tau = lo;
-      // The kept state is recomputed with statistics (deterministic: the same as the trial's).
-      end = lo > 0.0 ? advanced(lo, true) : start;
-    } else {
-      end = advanced(tau, true);
+      end = at_lo;
+      end_info = lo_info;
     }
     b.state = end;
+    keep_step(index, end_info);
     // Static friction of the resting points that do not slide, as an impulse bounded by mu times
     // their normal impulse over the stretch, f·τ (sliding points had theirs inside the step).
     if (mu > 0.0 && resting.count > 0 && tau > 0.0) {
@@ -347,9 +353,11 @@ void World::advance_body(std::size_t index, double h) {
                           "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       if (++events >= 2 * Tol::kMaxEventsPerStep) {
         // Pathological: finish the step in free flight and lift out, rather than loop on.
+        StepInfo info;
         b.state = integrate_body(
             index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_), b.state,
-            remaining, true);
+            remaining, &info);
+        keep_step(index, info);
         const double depth = std::max(0.0, -min_gap(b, b.state, floor_y, all_vertices(b, floor_y)));
         b.state.x.y() += depth;
         stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "tumble/sampler.hpp"
 #include "tumble/scene.hpp"
+#include "tumble/world_builder.hpp"
 
 namespace tumble {
 namespace {
@@ -80,6 +82,26 @@ TEST(AssetScenes, ParticleIsThrownOntoABouncyFloor) {
   ASSERT_TRUE(scene.floor.has_value());
   EXPECT_EQ(scene.floor->restitution, 0.7);
   EXPECT_EQ(scene.simulation.duration_s, 3.0);
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(AssetScenes, EveryOneAndTheDefaultRunWithoutDiagnostics) {
+  // No false alarms: the scenes users start from must not warn. Each runs its whole duration.
+  std::vector<Scene> scenes{default_scene()};
+  for (const auto& entry : std::filesystem::directory_iterator(kSceneDir))
+    if (entry.path().extension() == ".toml") scenes.push_back(load_scene_file(entry.path()));
+  for (const Scene& scene : scenes) {
+    World world(make_world_def(scene));
+    const long steps = step_count_for(scene.simulation.duration_s, scene.simulation.dt_s);
+    for (long i = 0; i < steps; ++i) world.step();
+    for (const Diagnostic& d : world.diagnostics().list())
+      ADD_FAILURE() << scene.source_name << ": " << d.code << ": " << d.message;
+  }
 }
 
 }  // namespace
