@@ -26,9 +26,9 @@ enum class Marker { None, Circle, Square, Triangle, Diamond, Cross };
 /// A named polyline and/or markers. Points with non-finite coordinates, or non-positive ones on a
 /// log axis, are skipped (a line is broken there, never drawn through).
 struct Series {
-  std::string name;           ///< legend entry; empty: not in the legend
-  std::vector<double> x, y;   ///< same length
-  std::string color;          ///< "#rrggbb"; empty: the next colour of the built-in palette
+  std::string name;          ///< legend entry; empty: not in the legend
+  std::vector<double> x, y;  ///< same length
+  std::string color;         ///< "#rrggbb"; empty: the next colour of the built-in palette
   bool line = true;
   bool dashed = false;
   double line_width_px = 1.5;
@@ -36,13 +36,17 @@ struct Series {
   bool filled = true;  ///< markers filled or hollow
 };
 
-/// A labelled vertical line across a panel (e.g. a contact at time t).
+/// A labelled vertical line across a panel (e.g. a contact at time t). Labels sit above the plot
+/// area; with more than 20 marks, or where a label would overlap the one before, only the line
+/// is drawn.
 struct VerticalMark {
   double x = 0.0;
   std::string label;  ///< may be empty
 };
 
-/// One chart: axes, series, vertical marks, an optional legend.
+/// One chart: axes, series, vertical marks, an optional legend. Series without a colour take the
+/// palette (Okabe–Ito, colour-blind safe) in order, starting afresh in each panel. The legend
+/// lists the named series, in the inner corner that hides the least data (top-right on a tie).
 struct Panel {
   std::string title;
   Axis x, y;
@@ -52,7 +56,9 @@ struct Panel {
   bool legend = true;
 };
 
-/// Panels laid out in a grid of `columns`, each `panel_width_px` × `panel_height_px`.
+/// Panels laid out in a grid of `columns`, each `panel_width_px` × `panel_height_px` (at least
+/// 160 × 120); the plot areas of a column share their left edge, those of a row their top and
+/// bottom.
 struct Figure {
   std::string title;  ///< above all panels; may be empty
   std::vector<Panel> panels;

@@ -18,8 +18,9 @@ constexpr double kSlack = 1e-9;
 constexpr int kMaxLinearTicks = 8;
 constexpr int kMinLinearTicks = 3;
 
-// More labelled decades than this and the labels thin out to every 2nd, 3rd, … decade.
-constexpr int kMaxLogLabels = 8;
+// At most this many decade labels: a span of up to 8 decades is labelled at every decade, a
+// longer one at every 2nd, 3rd, … decade.
+constexpr int kMaxLogLabels = 9;
 
 // Minor ticks (2..9 within a decade) only when a decade is at least this long: closer, the eight
 // marks merge into a smudge.
@@ -29,7 +30,9 @@ constexpr double kMinDecadeForMinorPx = 40.0;
 constexpr int kMinExponent = -300;
 constexpr int kMaxExponent = 300;
 
-double pow10(int exponent) { return std::pow(10.0, exponent); }
+double pow10(int exponent) {
+  return std::pow(10.0, exponent);
+}
 
 std::optional<double> usable_limit(const std::optional<double>& limit, Scale scale) {
   if (!limit || !std::isfinite(*limit)) return std::nullopt;
@@ -58,10 +61,9 @@ std::string linear_label(double value, int step_exponent, bool scientific) {
   std::array<char, 64> buf{};
   if (!scientific) {
     const int decimals = std::max(0, -step_exponent);
-    const auto end =
-        std::to_chars(buf.data(), buf.data() + buf.size(), value, std::chars_format::fixed,
-                      decimals)
-            .ptr;
+    const auto end = std::to_chars(buf.data(), buf.data() + buf.size(), value,
+                                   std::chars_format::fixed, decimals)
+                         .ptr;
     return {buf.data(), end};
   }
   if (value == 0.0) return "0";
@@ -167,13 +169,18 @@ AxisTicks log_ticks(const Axis& axis, std::optional<DataExtent> data, TickRoom r
   const int last = static_cast<int>(std::floor(hi_decades + kSlack));
   const double decade_px = room.length_px / (hi_decades - lo_decades);
 
-  // Label every k-th decade: at most kMaxLogLabels − 1 decades between the outer labels, and
-  // labels no closer than the room allows. Labelled exponents are multiples of k, so a plot
-  // from 1e-12 to 1e6 reads 1e-12, 1e-9, 1e-6, 1e-3, 1, 1e3, 1e6.
+  // Label every k-th decade: at most kMaxLogLabels labels, no closer than the room allows.
+  // Labelled exponents are multiples of k, so a plot from 1e-12 to 1e6 reads 1e-12, 1e-9, 1e-6,
+  // 1e-3, 1, 1000, 1e6.
+  const auto multiples_of = [first, last](int k) {
+    int n = 0;
+    for (int e = first; e <= last; ++e) n += e % k == 0 ? 1 : 0;
+    return n;
+  };
   constexpr std::array<int, 9> kLabelEvery = {1, 2, 3, 5, 10, 20, 50, 100, 200};
   int every = kLabelEvery.back();
   for (const int k : kLabelEvery) {
-    if ((last - first) / k < kMaxLogLabels && decade_px * k >= room.min_label_spacing_px) {
+    if (multiples_of(k) <= kMaxLogLabels && decade_px * k >= room.min_label_spacing_px) {
       every = k;
       break;
     }
@@ -185,9 +192,9 @@ AxisTicks log_ticks(const Axis& axis, std::optional<DataExtent> data, TickRoom r
     result.ticks.push_back({std::clamp(pow10(e), lo, hi), labelled ? log_label(1, e) : "", true});
   }
   if (decade_px >= kMinDecadeForMinorPx) {
-    // Less than two decade ticks inside: label the minors too, or the axis has no scale.
-    // 2 and 5 when they give three labels in all, else every minor.
-    const bool few_decades = last - first < 1;
+    // Two decade ticks or fewer (a range of about one decade): label the minors too, or the
+    // axis hardly reads as a scale. 2 and 5 when that gives three labels in all, else all.
+    const bool few_decades = last - first < 2;
     int labelled_minors_2_5 = 0;
     for (int e = first - 1; e <= last; ++e)
       for (const int m : {2, 5}) labelled_minors_2_5 += inside(m * pow10(e)) ? 1 : 0;
@@ -220,7 +227,8 @@ AxisTicks axis_ticks(const Axis& axis, std::optional<DataExtent> data, TickRoom 
 std::string log_label(int mantissa, int exponent) {
   const std::string m = std::to_string(mantissa);
   // 0.01 … 9000 read at a glance; beyond, the zeros would need counting.
-  if (exponent >= 0 && exponent <= 3) return m + std::string(static_cast<std::size_t>(exponent), '0');
+  if (exponent >= 0 && exponent <= 3)
+    return m + std::string(static_cast<std::size_t>(exponent), '0');
   if (exponent < 0 && exponent >= -2)
     return "0." + std::string(static_cast<std::size_t>(-exponent - 1), '0') + m;
   return m + "e" + std::to_string(exponent);

@@ -16,8 +16,8 @@ namespace {
 
 // Okabe & Ito's colour-blind-safe palette ("Color Universal Design", 2008) without its yellow,
 // which is too pale on white, and with Paul Tol's "wine" as an eighth colour.
-constexpr std::array<std::string_view, 8> kPalette = {
-    "#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#000000", "#882255"};
+constexpr std::array<std::string_view, 8> kPalette = {"#0072b2", "#d55e00", "#009e73", "#cc79a7",
+                                                      "#e69f00", "#56b4e9", "#000000", "#882255"};
 
 // Font sizes (px).
 constexpr double kTickFontPx = 11.0;
@@ -36,22 +36,23 @@ constexpr double kCapEm = 0.72;
 
 constexpr double kMajorTickPx = 5.0;
 constexpr double kMinorTickPx = 3.0;
-constexpr double kGapPx = 4.0;        // between a tick and its label, a label and the axis label
-constexpr double kOuterPadPx = 8.0;   // between the panel's edge and anything drawn
+constexpr double kGapPx = 4.0;       // between a tick and its label, a label and the axis label
+constexpr double kOuterPadPx = 8.0;  // between the panel's edge and anything drawn
 constexpr double kMarkerRadiusPx = 3.5;
 
 constexpr std::string_view kTextColor = "#222222";
 constexpr std::string_view kTickTextColor = "#444444";
 constexpr std::string_view kFrameColor = "#555555";
 constexpr std::string_view kGridColor = "#e6e6e6";
-constexpr std::string_view kFontFamily = "Helvetica, Arial, 'Liberation Sans', 'DejaVu Sans', sans-serif";
+constexpr std::string_view kFontFamily =
+    "Helvetica, Arial, 'Liberation Sans', 'DejaVu Sans', sans-serif";
 
 // Pixel coordinates are printed with two decimals (1/100 px is below anything a screen shows)
 // and trailing zeros dropped; std::to_chars never consults the locale.
 std::string num(double v) {
   // Points far outside the plot are clipped anyway; clamping keeps "1e300" data from printing
   // 300-digit coordinates. ±1e6 px leaves any visible segment's slope exact.
-  v = std::clamp(v, -1e6, 1e6);
+  v = std::isnan(v) ? 0.0 : std::clamp(v, -1e6, 1e6);
   std::array<char, 32> buf{};
   const auto end =
       std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::fixed, 2).ptr;
@@ -69,16 +70,38 @@ std::string escape(std::string_view text) {
   out.reserve(text.size());
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
       default:
         if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n') out += c;
     }
   }
   return out;
+}
+
+// Appends the parts in order, numbers through num(): put(out, "<circle cx=\"", x, "\"/>").
+void put_part(std::string& out, std::string_view text) {
+  out += text;
+}
+void put_part(std::string& out, double v) {
+  out += num(v);
+}
+template <typename... Parts>
+void put(std::string& out, const Parts&... parts) {
+  (put_part(out, parts), ...);
 }
 
 // Width in px of text in a font of font_px, counting UTF-8 code points, not bytes ("µs" is 2).
@@ -118,8 +141,8 @@ struct AxisMap {
   double operator()(double v) const { return p0 + (transform(v) - t0) / (t1 - t0) * (p1 - p0); }
 };
 
-// The extents of the usable points of all series (a point is usable when both coordinates are),
-// and of the marks along x.
+// The extent of the usable points of all series along one axis (a point is usable when both of
+// its coordinates are), and of the marks along x.
 std::optional<DataExtent> extent(const Panel& panel, bool along_x) {
   std::optional<DataExtent> e;
   const auto add = [&e](double v) {
@@ -143,17 +166,18 @@ std::optional<DataExtent> extent(const Panel& panel, bool along_x) {
 // A series in pixels: its unbroken runs of usable points, and its colour.
 struct Trace {
   const Series* series = nullptr;
-  std::string color;
+  std::string color;  // escaped, ready for an attribute
   std::vector<std::vector<Point>> runs;
 };
 
 std::vector<Trace> traces(const Panel& panel, const AxisMap& x, const AxisMap& y) {
   std::vector<Trace> out;
-  std::size_t next_color = 0;
+  std::size_t next_color = 0;  // per panel, so every panel's first series is blue
   for (const Series& s : panel.series) {
     Trace t;
     t.series = &s;
-    t.color = !s.color.empty() ? s.color : std::string(kPalette[next_color++ % kPalette.size()]);
+    t.color =
+        !s.color.empty() ? escape(s.color) : std::string(kPalette[next_color++ % kPalette.size()]);
     std::vector<Point> run;
     const std::size_t n = std::min(s.x.size(), s.y.size());
     for (std::size_t i = 0; i < n; ++i) {
@@ -171,77 +195,73 @@ std::vector<Trace> traces(const Panel& panel, const AxisMap& x, const AxisMap& y
 }
 
 // One marker centred on p, in the fill and stroke of its enclosing group. Shapes are scaled to
-// about the same ink: a square or diamond of the circle's radius looks larger than the circle.
+// about the same ink: a square or diamond as wide as the circle looks larger than it.
 void marker(std::string& out, Marker shape, Point p, double r) {
-  const std::string cx = num(p.x), cy = num(p.y);
   switch (shape) {
-    case Marker::None: return;
+    case Marker::None:
+      return;
     case Marker::Circle:
-      out += "<circle cx=\"" + cx + "\" cy=\"" + cy + "\" r=\"" + num(r) + "\"/>\n";
+      put(out, "<circle cx=\"", p.x, "\" cy=\"", p.y, "\" r=\"", r, "\"/>\n");
       return;
     case Marker::Square: {
       const double h = 0.88 * r;
-      out += "<rect x=\"" + num(p.x - h) + "\" y=\"" + num(p.y - h) + "\" width=\"" +
-             num(2 * h) + "\" height=\"" + num(2 * h) + "\"/>\n";
+      put(out, "<rect x=\"", p.x - h, "\" y=\"", p.y - h, "\" width=\"", 2 * h, "\" height=\"",
+          2 * h, "\"/>\n");
       return;
     }
     case Marker::Triangle: {
-      // Centred on its centroid: apex 1.25 r above, base 0.625 r below.
+      // Centred on its centroid: the apex 1.25 r above, the base 0.625 r below.
       const double a = 1.25 * r, half_base = a * std::sqrt(3.0) / 2.0;
-      out += "<path d=\"M" + cx + " " + num(p.y - a) + "L" + num(p.x + half_base) + " " +
-             num(p.y + a / 2) + "L" + num(p.x - half_base) + " " + num(p.y + a / 2) + "Z\"/>\n";
+      put(out, "<path d=\"M", p.x, " ", p.y - a, "L", p.x + half_base, " ", p.y + a / 2, "L",
+          p.x - half_base, " ", p.y + a / 2, "Z\"/>\n");
       return;
     }
     case Marker::Diamond: {
       const double a = 1.2 * r;
-      out += "<path d=\"M" + cx + " " + num(p.y - a) + "L" + num(p.x + a) + " " + cy + "L" + cx +
-             " " + num(p.y + a) + "L" + num(p.x - a) + " " + cy + "Z\"/>\n";
+      put(out, "<path d=\"M", p.x, " ", p.y - a, "L", p.x + a, " ", p.y, "L", p.x, " ", p.y + a,
+          "L", p.x - a, " ", p.y, "Z\"/>\n");
       return;
     }
     case Marker::Cross: {
       const double a = r;
-      out += "<path fill=\"none\" d=\"M" + num(p.x - a) + " " + num(p.y - a) + "L" +
-             num(p.x + a) + " " + num(p.y + a) + "M" + num(p.x - a) + " " + num(p.y + a) + "L" +
-             num(p.x + a) + " " + num(p.y - a) + "\"/>\n";
+      put(out, "<path fill=\"none\" d=\"M", p.x - a, " ", p.y - a, "L", p.x + a, " ", p.y + a, "M",
+          p.x - a, " ", p.y + a, "L", p.x + a, " ", p.y - a, "\"/>\n");
       return;
     }
   }
 }
 
-std::string dash_array(const Series& s) {
-  // Dashes and gaps grow with the line, so a thick dashed line still reads as dashed.
-  return num(4.0 * s.line_width_px) + " " + num(2.5 * s.line_width_px);
-}
-
 void polyline(std::string& out, const std::vector<Point>& run, const Trace& t) {
-  out += "<polyline stroke=\"" + escape(t.color) + "\" stroke-width=\"" +
-         num(t.series->line_width_px) + "\"";
-  if (t.series->dashed) out += " stroke-dasharray=\"" + dash_array(*t.series) + "\"";
+  // SVG rejects a negative width; a hairline still shows the series is there.
+  const double given_width = t.series->line_width_px;
+  const double width = std::isfinite(given_width) ? std::clamp(given_width, 0.25, 20.0) : 1.5;
+  put(out, "<polyline stroke=\"", t.color, "\" stroke-width=\"", width, "\"");
+  // Dashes and gaps grow with the line, so a thick dashed line still reads as dashed.
+  if (t.series->dashed) put(out, " stroke-dasharray=\"", 4.0 * width, " ", 2.5 * width, "\"");
   out += " points=\"";
-  for (std::size_t i = 0; i < run.size(); ++i) {
-    if (i > 0) out += ' ';
-    out += num(run[i].x) + "," + num(run[i].y);
-  }
+  for (std::size_t i = 0; i < run.size(); ++i) put(out, i > 0 ? " " : "", run[i].x, ",", run[i].y);
   out += "\"/>\n";
 }
 
 // The fill and stroke a series' markers share.
-std::string marker_paint(const Trace& t) {
-  const std::string color = escape(t.color);
-  return t.series->filled ? "fill=\"" + color + "\" stroke=\"" + color + "\" stroke-width=\"1\""
-                          : "fill=\"#ffffff\" stroke=\"" + color + "\" stroke-width=\"1.25\"";
+void open_marker_group(std::string& out, const Trace& t) {
+  if (t.series->filled)
+    put(out, "<g fill=\"", t.color, "\" stroke=\"", t.color, "\" stroke-width=\"1\">\n");
+  else
+    put(out, "<g fill=\"#ffffff\" stroke=\"", t.color, "\" stroke-width=\"1.25\">\n");
 }
 
+// A text element; `attributes` (already escaped) go after the position.
 void text(std::string& out, Point at, std::string_view content, std::string_view anchor,
-          std::string_view extra = {}) {
-  out += "<text x=\"" + num(at.x) + "\" y=\"" + num(at.y) + "\"";
-  if (anchor != "start") out += " text-anchor=\"" + std::string(anchor) + "\"";
-  if (!extra.empty()) out += " " + std::string(extra);
-  out += ">" + escape(content) + "</text>\n";
+          std::string_view attributes = {}) {
+  put(out, "<text x=\"", at.x, "\" y=\"", at.y, "\"");
+  if (anchor != "start") put(out, " text-anchor=\"", anchor, "\"");
+  if (!attributes.empty()) put(out, " ", attributes);
+  put(out, ">", escape(content), "</text>\n");
 }
 
-// Labels along a horizontal axis that do not overlap the previous label kept (ticks come in
-// ascending x), with at least a space between them.
+// The labels of a horizontal axis that do not overlap the last label kept (ticks come in
+// ascending x), with at least a wide space between two.
 std::vector<std::size_t> x_labels_that_fit(const AxisTicks& ticks, const AxisMap& map) {
   std::vector<std::size_t> kept;
   double last_right = -1e9;
@@ -250,7 +270,7 @@ std::vector<std::size_t> x_labels_that_fit(const AxisTicks& ticks, const AxisMap
     if (t.label.empty()) continue;
     const double half = text_width(t.label, kTickFontPx) / 2.0;
     const double px = map(t.value);
-    if (px - half < last_right + kGapPx * 1.5) continue;
+    if (px - half < last_right + 1.5 * kGapPx) continue;
     kept.push_back(i);
     last_right = px + half;
   }
@@ -264,7 +284,7 @@ std::vector<std::size_t> y_labels_that_fit(const AxisTicks& ticks, const AxisMap
   for (std::size_t i = 0; i < ticks.ticks.size(); ++i) {
     const Tick& t = ticks.ticks[i];
     if (t.label.empty()) continue;
-    const double px = map(t.value);  // decreasing: y grows downwards
+    const double px = map(t.value);  // decreasing: pixel y grows downwards
     if (last_px - px < kTickFontPx + 2.0) continue;
     kept.push_back(i);
     last_px = px;
@@ -272,45 +292,43 @@ std::vector<std::size_t> y_labels_that_fit(const AxisTicks& ticks, const AxisMap
   return kept;
 }
 
-// Every legend corner is scored by how much of the data would sit under the box: the points
-// and samples every few pixels along the lines. The emptiest wins; ties keep the first of
-// top-right, top-left, bottom-right, bottom-left.
+// Each legend corner is scored by how much of the data the box would hide: the points, and
+// samples every few pixels along the lines. The emptiest wins; ties keep the first of top-right,
+// top-left, bottom-right, bottom-left.
 Rect legend_box(const std::vector<Trace>& ts, const Rect& plot, double box_w, double box_h) {
   constexpr double kInset = 6.0;
+  const double left = plot.left + kInset, right = plot.right - kInset;
+  const double top = plot.top + kInset, bottom = plot.bottom - kInset;
   const std::array<Rect, 4> corners = {
-      Rect{plot.right - kInset - box_w, plot.top + kInset, plot.right - kInset,
-           plot.top + kInset + box_h},
-      Rect{plot.left + kInset, plot.top + kInset, plot.left + kInset + box_w,
-           plot.top + kInset + box_h},
-      Rect{plot.right - kInset - box_w, plot.bottom - kInset - box_h, plot.right - kInset,
-           plot.bottom - kInset},
-      Rect{plot.left + kInset, plot.bottom - kInset - box_h, plot.left + kInset + box_w,
-           plot.bottom - kInset},
+      Rect{right - box_w, top, right, top + box_h},
+      Rect{left, top, left + box_w, top + box_h},
+      Rect{right - box_w, bottom - box_h, right, bottom},
+      Rect{left, bottom - box_h, left + box_w, bottom},
   };
-  std::array<long, 4> covered{};
-  const auto count = [&](Point p) {
+  std::array<long, 4> hidden{};
+  const auto score = [&](Point p) {
     for (std::size_t c = 0; c < corners.size(); ++c)
-      if (corners[c].contains(p, kMarkerRadiusPx)) ++covered[c];
+      if (corners[c].contains(p, kMarkerRadiusPx)) ++hidden[c];
   };
   for (const Trace& t : ts) {
     for (const std::vector<Point>& run : t.runs) {
       for (std::size_t i = 0; i < run.size(); ++i) {
-        count(run[i]);
+        score(run[i]);
         if (i == 0 || !t.series->line) continue;
-        // Samples every 4 px (at most 256 a segment) along the segment from the previous point.
+        // Samples every 4 px (at most 256 a segment) between this point and the previous one.
         const Point a = run[i - 1], b = run[i];
         const double length = std::hypot(b.x - a.x, b.y - a.y);
         const int samples = static_cast<int>(std::min(256.0, std::ceil(length / 4.0)));
         for (int k = 1; k < samples; ++k) {
           const double f = k / static_cast<double>(samples);
-          count({a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)});
+          score({a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)});
         }
       }
     }
   }
   std::size_t best = 0;
   for (std::size_t c = 1; c < corners.size(); ++c)
-    if (covered[c] < covered[best]) best = c;
+    if (hidden[c] < hidden[best]) best = c;
   return corners[best];
 }
 
@@ -328,10 +346,9 @@ void legend(std::string& out, const std::vector<Trace>& ts, const Rect& plot) {
   const double box_h = 2.0 * kPad + kRowPx * static_cast<double>(entries.size()) - 4.0;
   const Rect box = legend_box(ts, plot, box_w, box_h);
 
-  out += "<g font-size=\"" + num(kLegendFontPx) + "\">\n";
-  out += "<rect x=\"" + num(box.left) + "\" y=\"" + num(box.top) + "\" width=\"" + num(box_w) +
-         "\" height=\"" + num(box_h) +
-         "\" rx=\"3\" fill=\"#ffffff\" fill-opacity=\"0.9\" stroke=\"#cccccc\"/>\n";
+  put(out, "<g font-size=\"", kLegendFontPx, "\" fill=\"", kTextColor, "\">\n");
+  put(out, "<rect x=\"", box.left, "\" y=\"", box.top, "\" width=\"", box_w, "\" height=\"", box_h,
+      "\" rx=\"3\" fill=\"#ffffff\" fill-opacity=\"0.9\" stroke=\"#cccccc\"/>\n");
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const Trace& t = *entries[i];
     const double cy = box.top + kPad + kRowPx * (static_cast<double>(i) + 0.5) - 2.0;
@@ -342,17 +359,16 @@ void legend(std::string& out, const std::vector<Trace>& ts, const Rect& plot) {
       out += "</g>\n";
     }
     if (t.series->marker != Marker::None) {
-      out += "<g " + marker_paint(t) + ">\n";
+      open_marker_group(out, t);
       marker(out, t.series->marker, {(x0 + x1) / 2.0, cy}, kMarkerRadiusPx);
       out += "</g>\n";
     }
-    text(out, {x1 + kGapPx, cy + kCapEm * kLegendFontPx / 2.0}, t.series->name, "start",
-         "fill=\"" + std::string(kTextColor) + "\"");
+    text(out, {x1 + kGapPx, cy + kCapEm * kLegendFontPx / 2.0}, t.series->name, "start");
   }
   out += "</g>\n";
 }
 
-// Mark labels wanted at all: at most this many marks, or the lines alone tell more.
+// More marks than this are labelled by their lines alone: twenty labels already fill a row.
 constexpr std::size_t kMaxLabelledMarks = 20;
 
 bool marks_labelled(const Panel& panel) {
@@ -363,25 +379,33 @@ bool marks_labelled(const Panel& panel) {
 
 void marks(std::string& out, const Panel& panel, const Rect& plot, const AxisMap& x,
            double panel_w) {
+  // Pixel x of each mark, or NaN for one outside the plot.
   std::vector<double> xs;
   for (const VerticalMark& m : panel.marks) {
     const double px = usable(m.x, panel.x.scale) ? x(m.x) : -1.0;
     xs.push_back(px >= plot.left - 0.5 && px <= plot.right + 0.5 ? px : std::nan(""));
   }
-  const std::string color = escape(panel.marks_color);
-  out += "<path fill=\"none\" stroke=\"" + color + "\" stroke-width=\"1\" d=\"";
-  for (const double px : xs)
-    if (!std::isnan(px)) out += "M" + num(px) + " " + num(plot.top) + "V" + num(plot.bottom);
+  std::vector<std::size_t> shown;  // indices of the marks inside, left to right
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    if (!std::isnan(xs[i])) shown.push_back(i);
+  if (shown.empty()) return;
+  std::stable_sort(shown.begin(), shown.end(),
+                   [&xs](std::size_t a, std::size_t b) { return xs[a] < xs[b]; });
+
+  put(out, "<path fill=\"none\" stroke=\"", escape(panel.marks_color),
+      "\" stroke-width=\"1\" d=\"");
+  for (const std::size_t i : shown) put(out, "M", xs[i], " ", plot.top, "V", plot.bottom);
   out += "\"/>\n";
   if (!marks_labelled(panel)) return;
 
-  // Labels sit above the frame, centred on their line (pushed inwards at the panel's edges);
-  // one that would overlap the label before it is left out.
-  out += "<g font-size=\"" + num(kMarkLabelFontPx) + "\" fill=\"" + color + "\">\n";
+  // Labels sit above the frame, centred on their line (pushed inwards at the panel's edges), in
+  // the tick labels' grey: the marks' own colour is meant for thin lines and too pale for text.
+  // A label that would overlap the one to its left is left out.
+  put(out, "<g font-size=\"", kMarkLabelFontPx, "\" fill=\"", kTickTextColor, "\">\n");
   double last_right = -1e9;
-  for (std::size_t i = 0; i < panel.marks.size(); ++i) {
+  for (const std::size_t i : shown) {
     const std::string& label = panel.marks[i].label;
-    if (std::isnan(xs[i]) || label.empty()) continue;
+    if (label.empty()) continue;
     const double w = text_width(label, kMarkLabelFontPx);
     const double left = std::clamp(xs[i] - w / 2.0, 2.0, std::max(2.0, panel_w - 2.0 - w));
     if (left < last_right + kGapPx) continue;
@@ -391,76 +415,101 @@ void marks(std::string& out, const Panel& panel, const Rect& plot, const AxisMap
   out += "</g>\n";
 }
 
-void panel_svg(std::string& out, const Panel& panel, int index, Point origin, double w,
-               double h) {
-  const bool has_title = !panel.title.empty();
+// Where a panel's plot area goes, and the ticks and labels drawn around it.
+struct PanelLayout {
+  Rect plot;  // in the panel's own coordinates
+  AxisTicks x_ticks, y_ticks;
+  std::vector<std::size_t> x_labels, y_labels;  // indices of the ticks whose label is drawn
+};
+
+// Distances from a panel's edges to its plot area. Panels in one column share their left
+// margin and panels in one row their top and bottom ones, so the plot areas line up.
+struct Margins {
+  double left = 0.0, top = 0.0, bottom = 0.0;
+};
+
+PanelLayout layout_panel(const Panel& panel, double w, double h, const Margins& at_least) {
   const bool has_x_label = !panel.x.label.empty(), has_y_label = !panel.y.label.empty();
-  // Heights of the bands above and below the plot area, top to bottom.
-  const double title_band = has_title ? kPanelTitleFontPx + 8.0 : 0.0;
+  // The bands above and below the plot area, top to bottom.
+  const double title_band = !panel.title.empty() ? kPanelTitleFontPx + 8.0 : 0.0;
   const double marks_band = marks_labelled(panel) ? kMarkLabelFontPx + 6.0 : 0.0;
   const double tick_label_band = kMajorTickPx + kGapPx + kTickFontPx + 2.0;
   const double x_label_band = has_x_label ? kGapPx + kAxisLabelFontPx + 2.0 : 0.0;
 
-  Rect plot;
-  plot.top = kOuterPadPx + title_band + marks_band;
-  plot.bottom = std::max(plot.top + 20.0, h - kOuterPadPx - x_label_band - tick_label_band);
+  PanelLayout layout;
+  Rect& plot = layout.plot;
+  plot.top = std::round(std::max(at_least.top, kOuterPadPx + title_band + marks_band));
+  const double bottom_margin =
+      std::max(at_least.bottom, kOuterPadPx + x_label_band + tick_label_band);
+  plot.bottom = std::round(std::max(plot.top + 20.0, h - bottom_margin));
 
+  // The y axis first: its labels' width decides where the plot starts.
   const std::optional<DataExtent> x_data = extent(panel, true), y_data = extent(panel, false);
-  // Labels on a vertical axis need a line each; linear ones a little more, to read as a scale.
+  // Vertical labels need a line each; linear ones a little more, to read as a scale.
   const double y_spacing = panel.y.scale == Scale::Log10 ? kTickFontPx + 6.0 : 45.0;
-  const AxisTicks y_ticks = axis_ticks(panel.y, y_data, {plot.height(), y_spacing});
-  const AxisMap y_map(panel.y.scale, y_ticks, plot.bottom, plot.top);
-  const std::vector<std::size_t> y_labels = y_labels_that_fit(y_ticks, y_map);
+  layout.y_ticks = axis_ticks(panel.y, y_data, {plot.height(), y_spacing});
+  const AxisMap y_map(panel.y.scale, layout.y_ticks, plot.bottom, plot.top);
+  layout.y_labels = y_labels_that_fit(layout.y_ticks, y_map);
   double y_label_w = 0.0;
-  for (const std::size_t i : y_labels)
-    y_label_w = std::max(y_label_w, text_width(y_ticks.ticks[i].label, kTickFontPx));
-
+  for (const std::size_t i : layout.y_labels)
+    y_label_w = std::max(y_label_w, text_width(layout.y_ticks.ticks[i].label, kTickFontPx));
   const double y_axis_label_band = has_y_label ? kAxisLabelFontPx + kGapPx : 0.0;
-  plot.left = std::round(kOuterPadPx + y_axis_label_band + y_label_w + kGapPx + kMajorTickPx);
-  // The last x label is centred on the right edge: the margin grows to keep it in the panel.
-  double right_margin = 16.0;
-  AxisTicks x_ticks;
-  std::vector<std::size_t> x_labels;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    plot.right = std::max(plot.left + 20.0, std::round(w - right_margin));
-    // An x label takes about five glyphs and a space or two on each side.
-    const double x_spacing = panel.x.scale == Scale::Log10 ? 44.0 : 70.0;
-    x_ticks = axis_ticks(panel.x, x_data, {plot.width(), x_spacing});
-    const AxisMap x_map(panel.x.scale, x_ticks, plot.left, plot.right);
-    x_labels = x_labels_that_fit(x_ticks, x_map);
-    if (x_labels.empty()) break;
-    const Tick& last = x_ticks.ticks[x_labels.back()];
-    const double overhang = x_map(last.value) + text_width(last.label, kTickFontPx) / 2.0 + 2.0;
-    if (overhang <= w) break;
-    right_margin += overhang - w;
-  }
-  plot.top = std::round(plot.top);
-  plot.bottom = std::round(plot.bottom);
-  const AxisMap x_map(panel.x.scale, x_ticks, plot.left, plot.right);
+  plot.left = std::round(
+      std::max(at_least.left, kOuterPadPx + y_axis_label_band + y_label_w + kGapPx + kMajorTickPx));
 
-  out += "<g transform=\"translate(" + num(origin.x) + "," + num(origin.y) + ")\">\n";
+  // The last x label is centred on the right edge: the margin grows to keep it in the panel.
+  // An x label is about five glyphs wide, plus a space or two on either side.
+  const double x_spacing = panel.x.scale == Scale::Log10 ? 44.0 : 70.0;
+  double right_margin = 16.0;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    plot.right = std::round(std::max(plot.left + 20.0, w - right_margin));
+    layout.x_ticks = axis_ticks(panel.x, x_data, {plot.width(), x_spacing});
+    const AxisMap x_map(panel.x.scale, layout.x_ticks, plot.left, plot.right);
+    layout.x_labels = x_labels_that_fit(layout.x_ticks, x_map);
+    if (layout.x_labels.empty()) break;
+    const Tick& last = layout.x_ticks.ticks[layout.x_labels.back()];
+    const double label_right = x_map(last.value) + text_width(last.label, kTickFontPx) / 2.0;
+    if (label_right + 2.0 <= w) break;
+    right_margin += label_right + 2.0 - w;
+  }
+  return layout;
+}
+
+Margins margins(const PanelLayout& layout, double h) {
+  return {layout.plot.left, layout.plot.top, h - layout.plot.bottom};
+}
+
+void draw_panel(std::string& out, const Panel& panel, const PanelLayout& layout, int index,
+                Point origin, double w, double h) {
+  const Rect& plot = layout.plot;
+  const AxisTicks &x_ticks = layout.x_ticks, &y_ticks = layout.y_ticks;
+  const AxisMap x_map(panel.x.scale, x_ticks, plot.left, plot.right);
+  const AxisMap y_map(panel.y.scale, y_ticks, plot.bottom, plot.top);
+
+  put(out, "<g transform=\"translate(", origin.x, ",", origin.y, ")\">\n");
   const std::string clip_id = "tumble-plot-area-" + std::to_string(index);
-  out += "<defs><clipPath id=\"" + clip_id + "\"><rect x=\"" + num(plot.left) + "\" y=\"" +
-         num(plot.top) + "\" width=\"" + num(plot.width()) + "\" height=\"" +
-         num(plot.height()) + "\"/></clipPath></defs>\n";
-  if (has_title)
+  put(out, "<defs><clipPath id=\"", clip_id, "\"><rect x=\"", plot.left, "\" y=\"", plot.top,
+      "\" width=\"", plot.width(), "\" height=\"", plot.height(), "\"/></clipPath></defs>\n");
+  std::string style;
+  if (!panel.title.empty()) {
+    put(style, "font-size=\"", kPanelTitleFontPx, "\" font-weight=\"bold\" fill=\"", kTextColor,
+        "\"");
     text(out, {(plot.left + plot.right) / 2.0, kOuterPadPx + kCapEm * kPanelTitleFontPx + 1.0},
-         panel.title, "middle",
-         "font-size=\"" + num(kPanelTitleFontPx) + "\" font-weight=\"bold\" fill=\"" +
-             std::string(kTextColor) + "\"");
+         panel.title, "middle", style);
+  }
 
   // Grid lines at the major ticks that are not on the frame.
-  out += "<path fill=\"none\" stroke=\"" + std::string(kGridColor) +
-         "\" stroke-width=\"1\" shape-rendering=\"crispEdges\" d=\"";
+  put(out, "<path fill=\"none\" stroke=\"", kGridColor,
+      "\" stroke-width=\"1\" shape-rendering=\"crispEdges\" d=\"");
   for (const Tick& t : x_ticks.ticks) {
     const double px = x_map(t.value);
     if (t.major && px > plot.left + 0.5 && px < plot.right - 0.5)
-      out += "M" + num(px) + " " + num(plot.top) + "V" + num(plot.bottom);
+      put(out, "M", px, " ", plot.top, "V", plot.bottom);
   }
   for (const Tick& t : y_ticks.ticks) {
     const double py = y_map(t.value);
     if (t.major && py > plot.top + 0.5 && py < plot.bottom - 0.5)
-      out += "M" + num(plot.left) + " " + num(py) + "H" + num(plot.right);
+      put(out, "M", plot.left, " ", py, "H", plot.right);
   }
   out += "\"/>\n";
 
@@ -468,8 +517,8 @@ void panel_svg(std::string& out, const Panel& panel, int index, Point origin, do
 
   const std::vector<Trace> ts = traces(panel, x_map, y_map);
   // Lines are clipped to the plot area; markers are drawn whole, but only for points inside it.
-  out += "<g clip-path=\"url(#" + clip_id +
-         ")\" fill=\"none\" stroke-linejoin=\"round\" stroke-linecap=\"round\">\n";
+  put(out, "<g clip-path=\"url(#", clip_id,
+      ")\" fill=\"none\" stroke-linejoin=\"round\" stroke-linecap=\"round\">\n");
   for (const Trace& t : ts)
     if (t.series->line)
       for (const std::vector<Point>& run : t.runs)
@@ -477,52 +526,45 @@ void panel_svg(std::string& out, const Panel& panel, int index, Point origin, do
   out += "</g>\n";
   for (const Trace& t : ts) {
     if (t.series->marker == Marker::None) continue;
-    out += "<g " + marker_paint(t) + ">\n";
+    open_marker_group(out, t);
     for (const std::vector<Point>& run : t.runs)
       for (const Point& p : run)
         if (plot.contains(p, 0.5)) marker(out, t.series->marker, p, kMarkerRadiusPx);
     out += "</g>\n";
   }
 
-  // Frame and ticks, over the data so a line along an edge does not hide them.
-  out += "<rect x=\"" + num(plot.left) + "\" y=\"" + num(plot.top) + "\" width=\"" +
-         num(plot.width()) + "\" height=\"" + num(plot.height()) + "\" fill=\"none\" stroke=\"" +
-         std::string(kFrameColor) + "\" stroke-width=\"1\" shape-rendering=\"crispEdges\"/>\n";
-  out += "<path fill=\"none\" stroke=\"" + std::string(kFrameColor) +
-         "\" stroke-width=\"1\" shape-rendering=\"crispEdges\" d=\"";
+  // Frame and ticks over the data, so a line along an edge does not hide them.
+  put(out, "<rect x=\"", plot.left, "\" y=\"", plot.top, "\" width=\"", plot.width(),
+      "\" height=\"", plot.height(), "\" fill=\"none\" stroke=\"", kFrameColor,
+      "\" stroke-width=\"1\" shape-rendering=\"crispEdges\"/>\n");
+  put(out, "<path fill=\"none\" stroke=\"", kFrameColor,
+      "\" stroke-width=\"1\" shape-rendering=\"crispEdges\" d=\"");
   for (const Tick& t : x_ticks.ticks)
-    out += "M" + num(x_map(t.value)) + " " + num(plot.bottom) + "v" +
-           num(t.major ? kMajorTickPx : kMinorTickPx);
+    put(out, "M", x_map(t.value), " ", plot.bottom, "v", t.major ? kMajorTickPx : kMinorTickPx);
   for (const Tick& t : y_ticks.ticks)
-    out += "M" + num(plot.left) + " " + num(y_map(t.value)) + "h" +
-           num(-(t.major ? kMajorTickPx : kMinorTickPx));
+    put(out, "M", plot.left, " ", y_map(t.value), "h", t.major ? -kMajorTickPx : -kMinorTickPx);
   out += "\"/>\n";
 
-  out += "<g font-size=\"" + num(kTickFontPx) + "\" fill=\"" + std::string(kTickTextColor) +
-         "\">\n";
+  put(out, "<g font-size=\"", kTickFontPx, "\" fill=\"", kTickTextColor, "\">\n");
   const double x_label_y = plot.bottom + kMajorTickPx + kGapPx + kCapEm * kTickFontPx;
-  for (const std::size_t i : x_labels)
+  for (const std::size_t i : layout.x_labels)
     text(out, {x_map(x_ticks.ticks[i].value), x_label_y}, x_ticks.ticks[i].label, "middle");
   const double y_label_x = plot.left - kMajorTickPx - kGapPx;
-  for (const std::size_t i : y_labels)
+  for (const std::size_t i : layout.y_labels)
     text(out, {y_label_x, y_map(y_ticks.ticks[i].value) + kCapEm * kTickFontPx / 2.0},
          y_ticks.ticks[i].label, "end");
   out += "</g>\n";
 
-  const std::string label_style =
-      "font-size=\"" + num(kAxisLabelFontPx) + "\" fill=\"" + std::string(kTextColor) + "\"";
-  if (has_x_label)
-    text(out,
-         {(plot.left + plot.right) / 2.0,
-          x_label_y + kGapPx + 3.0 + kCapEm * kAxisLabelFontPx + 1.0},
-         panel.x.label, "middle", label_style);
-  if (has_y_label) {
-    // Rotated a quarter turn anticlockwise: the baseline runs up the left edge, the glyphs'
-    // tops face left.
-    const Point at{kOuterPadPx + kCapEm * kAxisLabelFontPx + 1.0,
-                   (plot.top + plot.bottom) / 2.0};
-    text(out, at, panel.y.label, "middle",
-         label_style + " transform=\"rotate(-90 " + num(at.x) + " " + num(at.y) + ")\"");
+  style.clear();
+  put(style, "font-size=\"", kAxisLabelFontPx, "\" fill=\"", kTextColor, "\"");
+  if (!panel.x.label.empty())
+    text(out, {(plot.left + plot.right) / 2.0, h - kOuterPadPx - 2.0}, panel.x.label, "middle",
+         style);
+  if (!panel.y.label.empty()) {
+    // A quarter turn anticlockwise: the baseline runs up the panel, the glyphs' tops face left.
+    const Point at{kOuterPadPx + kCapEm * kAxisLabelFontPx + 1.0, (plot.top + plot.bottom) / 2.0};
+    put(style, " transform=\"rotate(-90 ", at.x, " ", at.y, ")\"");
+    text(out, at, panel.y.label, "middle", style);
   }
 
   if (panel.legend) legend(out, ts, plot);
@@ -540,23 +582,41 @@ std::string render_svg(const Figure& figure) {
   const int panel_w = std::max(figure.panel_width_px, kMinPanelWidthPx);
   const int panel_h = std::max(figure.panel_height_px, kMinPanelHeightPx);
   const int title_h = figure.title.empty() ? 0 : 32;
-  const int width = columns * panel_w, height = title_h + rows * panel_h;
+  const std::string width = std::to_string(columns * panel_w);
+  const std::string height = std::to_string(title_h + rows * panel_h);
 
   std::string out;
-  const std::string w = std::to_string(width), h = std::to_string(height);
-  out += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + w +
-         "\" height=\"" + h + "\" viewBox=\"0 0 " + w + " " + h + "\" font-family=\"" +
-         std::string(kFontFamily) + "\">\n";
-  if (!figure.title.empty()) out += "<title>" + escape(figure.title) + "</title>\n";
-  out += "<rect width=\"" + w + "\" height=\"" + h + "\" fill=\"#ffffff\"/>\n";
-  if (!figure.title.empty())
-    text(out, {width / 2.0, 8.0 + kCapEm * kFigureTitleFontPx + 2.0}, figure.title, "middle",
-         "font-size=\"" + num(kFigureTitleFontPx) + "\" font-weight=\"bold\" fill=\"" +
-             std::string(kTextColor) + "\"");
-  for (int i = 0; i < panel_count; ++i) {
-    const Point origin{static_cast<double>((i % columns) * panel_w),
-                       static_cast<double>(title_h + (i / columns) * panel_h)};
-    panel_svg(out, figure.panels[static_cast<std::size_t>(i)], i, origin, panel_w, panel_h);
+  put(out, "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"", width,
+      "\" height=\"", height, "\" viewBox=\"0 0 ", width, " ", height, "\" font-family=\"",
+      kFontFamily, "\">\n");
+  if (!figure.title.empty()) put(out, "<title>", escape(figure.title), "</title>\n");
+  put(out, "<rect width=\"", width, "\" height=\"", height, "\" fill=\"#ffffff\"/>\n");
+  if (!figure.title.empty()) {
+    std::string style;
+    put(style, "font-size=\"", kFigureTitleFontPx, "\" font-weight=\"bold\" fill=\"", kTextColor,
+        "\"");
+    text(out, {columns * panel_w / 2.0, 8.0 + kCapEm * kFigureTitleFontPx + 2.0}, figure.title,
+         "middle", style);
+  }
+  // Two passes: each panel's own margins, then every panel laid out again with the widest
+  // left margin of its column and the tallest top and bottom ones of its row.
+  const double w_px = panel_w, h_px = panel_h;
+  std::vector<Margins> column(static_cast<std::size_t>(columns)),
+      row(static_cast<std::size_t>(rows));
+  for (std::size_t i = 0; i < figure.panels.size(); ++i) {
+    const Margins own = margins(layout_panel(figure.panels[i], w_px, h_px, {}), h_px);
+    Margins& c = column[i % column.size()];
+    Margins& r = row[i / column.size()];
+    c.left = std::max(c.left, own.left);
+    r.top = std::max(r.top, own.top);
+    r.bottom = std::max(r.bottom, own.bottom);
+  }
+  for (std::size_t i = 0; i < figure.panels.size(); ++i) {
+    const std::size_t c = i % column.size(), r = i / column.size();
+    const Margins aligned{column[c].left, row[r].top, row[r].bottom};
+    const PanelLayout layout = layout_panel(figure.panels[i], w_px, h_px, aligned);
+    const Point origin{static_cast<double>(c) * w_px, title_h + static_cast<double>(r) * h_px};
+    draw_panel(out, figure.panels[i], layout, static_cast<int>(i), origin, w_px, h_px);
   }
   out += "</svg>\n";
   return out;
