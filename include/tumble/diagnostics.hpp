@@ -8,6 +8,7 @@
 /// often it recurred: a warning names the first place to look and the fix.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tumble {
@@ -26,7 +27,10 @@ class Diagnostics {
   /// Records a warning; a code already recorded only counts one more occurrence.
   void warn(const std::string& code, double t_s, const std::string& message,
             const std::string& fix);
-  bool has(const std::string& code) const;
+  /// When `code` is already recorded, counts one more occurrence and returns true: lets a hot
+  /// loop skip composing a message it would not keep.
+  bool recur(std::string_view code);
+  bool has(std::string_view code) const;
   const std::vector<Diagnostic>& list() const { return list_; }
   bool empty() const { return list_.empty(); }
 

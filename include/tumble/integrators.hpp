@@ -17,8 +17,8 @@ enum class Integrator { Euler, SymplecticEuler, Midpoint, Rk4, Adaptive };
 /// rotation matrix R (re-orthonormalised after each step).
 enum class RotationRep { Quaternion, Matrix };
 
-inline constexpr std::array<std::string_view, 5> kIntegratorNames = {
-    "euler", "symplectic-euler", "midpoint", "rk4", "adaptive"};
+inline constexpr std::array<std::string_view, 5> kIntegratorNames = {"euler", "symplectic-euler",
+                                                                     "midpoint", "rk4", "adaptive"};
 /// The fixed-step integrators (every one but adaptive), in the order a study lists them.
 inline constexpr std::array<Integrator, 4> kFixedStepIntegrators = {
     Integrator::Euler, Integrator::SymplecticEuler, Integrator::Midpoint, Integrator::Rk4};

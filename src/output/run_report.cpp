@@ -17,16 +17,16 @@ ordered_json vec(const Vec3& v) {
 ordered_json settings_json(const Scene& s) {
   ordered_json j;
   const SimulationSettings& sim = s.simulation;
-  j["simulation"] = {{"duration_s", sim.duration_s},
-                     {"dt_s", sim.dt_s},
-                     {"integrator", to_string(sim.integrator)},
-                     {"tolerance", sim.integrator == Integrator::Adaptive
-                                       ? ordered_json(sim.tolerance)
-                                       : ordered_json()},
-                     {"rotation", to_string(sim.rotation)},
-                     {"gravity", vec(sim.gravity)},
-                     {"linear_drag", sim.linear_drag},
-                     {"angular_drag", sim.angular_drag}};
+  j["simulation"] = {
+      {"duration_s", sim.duration_s},
+      {"dt_s", sim.dt_s},
+      {"integrator", to_string(sim.integrator)},
+      {"tolerance",
+       sim.integrator == Integrator::Adaptive ? ordered_json(sim.tolerance) : ordered_json()},
+      {"rotation", to_string(sim.rotation)},
+      {"gravity", vec(sim.gravity)},
+      {"linear_drag", sim.linear_drag},
+      {"angular_drag", sim.angular_drag}};
   if (s.floor)
     j["floor"] = {{"height", s.floor->height},
                   {"restitution", s.floor->restitution},

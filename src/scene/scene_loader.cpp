@@ -37,10 +37,9 @@ double length(const Vec3& v) {
 
 SimulationSettings read_simulation(const toml::table& table, const std::string& file,
                                    const TimeOverrides& overrides) {
-  const TableReader r(
-      table, "[simulation]", file,
-      {"duration", "dt", "integrator", "tolerance", "rotation", "gravity", "linear_drag",
-       "angular_drag"});
+  const TableReader r(table, "[simulation]", file,
+                      {"duration", "dt", "integrator", "tolerance", "rotation", "gravity",
+                       "linear_drag", "angular_drag"});
   SimulationSettings s;
   // The upper bound (about 11.6 days) keeps the step and frame counts of a run sane.
   s.duration_s = r.number("duration", {0.0, 1e6, true, false}).value_or(s.duration_s);

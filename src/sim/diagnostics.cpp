@@ -15,8 +15,18 @@ void Diagnostics::warn(const std::string& code, double t_s, const std::string& m
   list_.push_back({code, "warning", message, t_s, fix, 1});
 }
 
-bool Diagnostics::has(const std::string& code) const {
-  return std::any_of(list_.begin(), list_.end(), [&](const Diagnostic& d) { return d.code == code; });
+bool Diagnostics::recur(std::string_view code) {
+  for (Diagnostic& d : list_)
+    if (d.code == code) {
+      ++d.occurrences;
+      return true;
+    }
+  return false;
+}
+
+bool Diagnostics::has(std::string_view code) const {
+  return std::any_of(list_.begin(), list_.end(),
+                     [&](const Diagnostic& d) { return d.code == code; });
 }
 
 }  // namespace tumble

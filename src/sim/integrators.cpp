@@ -79,7 +79,7 @@ constexpr double kA[7][6] = {
     {9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0},
     {35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0}};
 // b (5th order) − b* (4th order): the error estimate's weights.
-constexpr double kE[7] = {71.0 / 57600.0,  0.0,          -71.0 / 16695.0, 71.0 / 1920.0,
+constexpr double kE[7] = {71.0 / 57600.0,      0.0,          -71.0 / 16695.0, 71.0 / 1920.0,
                           -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0};
 
 // s + h Σ_j w_j k_j, as successive adds in a fixed order (deterministic arithmetic).
@@ -112,12 +112,11 @@ double scaled_error(const BodyState& s, const Rate* k, double h, const BodyDynam
       dR += (h * kE[j]) * k[j].Rdot;
   }
   const double speed = how.speed_mps;
-  double err = std::max(dx.norm() / how.length_m,
-                        dP.norm() / (s.P.norm() + b.mass() * speed));
+  double err = std::max(dx.norm() / how.length_m, dP.norm() / (s.P.norm() + b.mass() * speed));
   if (!b.is_particle()) {
     // A small change δq of a unit quaternion turns it by 2|δq|; a small δR by |δR|_F / √2.
-    const double angle = f.rotation() == RotationRep::Quaternion ? 2.0 * dq.norm()
-                                                                 : dR.norm() / std::sqrt(2.0);
+    const double angle =
+        f.rotation() == RotationRep::Quaternion ? 2.0 * dq.norm() : dR.norm() / std::sqrt(2.0);
     const double L_scale = b.inertia_body().maxCoeff() * speed / how.length_m;
     err = std::max({err, angle, dL.norm() / (s.L.norm() + L_scale)});
   }
@@ -170,8 +169,8 @@ BodyState dormand_prince(const BodyDynamics& f, const BodyState& s0, double h, c
       k[0] = k[6];  // FSAL: the last stage was evaluated at the new state
     } else {
       ++info.rejected;
-      const double shrink = finite ? std::clamp(std::pow(err, kExpo) / kSafe, 1.0, 1.0 / kMinRatio)
-                                   : 1.0 / kMinRatio;
+      const double shrink =
+          finite ? std::clamp(std::pow(err, kExpo) / kSafe, 1.0, 1.0 / kMinRatio) : 1.0 / kMinRatio;
       wish = std::max(hs / shrink, how.min_step_s);
     }
   }

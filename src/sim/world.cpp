@@ -117,8 +117,8 @@ Stepping World::stepping(std::size_t i) const {
   return how;
 }
 
-BodyState World::integrate_body(std::size_t i, const BodyDynamics& f, const BodyState& s,
-                                double h, StepInfo* info) const {
+BodyState World::integrate_body(std::size_t i, const BodyDynamics& f, const BodyState& s, double h,
+                                StepInfo* info) const {
   return integrate(f, s, h, stepping(i), info);
 }
 
@@ -129,17 +129,19 @@ void World::keep_step(std::size_t i, const StepInfo& info) {
     step_stats_.accepted += info.accepted;
     step_stats_.rejected += info.rejected;
     if (info.smallest_step_s > 0.0)
-      step_stats_.smallest_step_s = step_stats_.smallest_step_s == 0.0
-                                        ? info.smallest_step_s
-                                        : std::min(step_stats_.smallest_step_s, info.smallest_step_s);
+      step_stats_.smallest_step_s =
+          step_stats_.smallest_step_s == 0.0
+              ? info.smallest_step_s
+              : std::min(step_stats_.smallest_step_s, info.smallest_step_s);
     step_stats_.largest_step_s = std::max(step_stats_.largest_step_s, info.largest_step_s);
     if (info.pinned)
-      diagnostics_.warn("adaptive_step_pinned", time_,
-                        "the adaptive step of body \"" + bodies_[i].name() +
-                            "\" was pinned at its minimum (" + fmt("%.3g", stepping(i).min_step_s) +
-                            " s) with its error above the tolerance",
-                        "loosen the tolerance (now " + fmt("%.3g", def_.tolerance) +
-                            ") or use rk4 with a small fixed dt");
+      if (!diagnostics_.recur("adaptive_step_pinned"))
+        diagnostics_.warn(
+            "adaptive_step_pinned", time_,
+            "the adaptive step of body \"" + bodies_[i].name() + "\" was pinned at its minimum (" +
+                fmt("%.3g", stepping(i).min_step_s) + " s) with its error above the tolerance",
+            "loosen the tolerance (now " + fmt("%.3g", def_.tolerance) +
+                ") or use rk4 with a small fixed dt");
   }
   // Renormalisation removes drift every step; a large one means the step misrepresents the turn:
   // 1 % in one step: the unrenormalised step was no longer near a rotation (a shear or scale of
@@ -147,13 +149,14 @@ void World::keep_step(std::size_t i, const StepInfo& info) {
   // dt = 1/30 s peaks at 0.23 %.
   constexpr double kMaxDrift = 1e-2;
   if (info.orientation_drift > kMaxDrift)
-    diagnostics_.warn("rotation_drift", time_,
-                      "the orientation of body \"" + bodies_[i].name() + "\" drifted " +
-                          fmt("%.2g", info.orientation_drift) + " from " +
-                          (def_.rotation == RotationRep::Quaternion ? "unit length"
-                                                                    : "orthonormal") +
-                          " in one step",
-                      "use rk4 or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
+    if (!diagnostics_.recur("rotation_drift"))
+      diagnostics_.warn(
+          "rotation_drift", time_,
+          "the orientation of body \"" + bodies_[i].name() + "\" drifted " +
+              fmt("%.2g", info.orientation_drift) + " from " +
+              (def_.rotation == RotationRep::Quaternion ? "unit length" : "orthonormal") +
+              " in one step",
+          "use rk4 or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
 }
 
 void World::check_state(std::size_t i) {
@@ -161,9 +164,9 @@ void World::check_state(std::size_t i) {
   if (!finite(b.state)) {
     const double t = time_;
     throw Error(ErrorKind::BadInput,
-                "the state of body \"" + b.name() + "\" stopped being finite near t = " +
-                    fmt("%.6g", t) + " s (integrator " + std::string(to_string(def_.integrator)) +
-                    ", dt = " + fmt("%.3g", def_.dt_s) +
+                "the state of body \"" + b.name() +
+                    "\" stopped being finite near t = " + fmt("%.6g", t) + " s (integrator " +
+                    std::string(to_string(def_.integrator)) + ", dt = " + fmt("%.3g", def_.dt_s) +
                     " s); use rk4 or adaptive, or a smaller dt, and check masses, sizes and "
                     "velocities for extreme values");
   }
@@ -171,13 +174,14 @@ void World::check_state(std::size_t i) {
   const double turn = def_.dt_s * b.angular_velocity().norm();
   const double limit = max_turn_per_step(def_.integrator);
   if (turn > limit)
-    diagnostics_.warn("step_too_large_for_spin", time_,
-                      "body \"" + b.name() + "\" turns " + fmt("%.3g", turn) +
-                          " rad per step (dt·|ω|), more than " +
-                          std::string(to_string(def_.integrator)) + " follows faithfully (" +
-                          fmt("%.3g", limit) + ")",
-                      "use dt <= " + fmt("%.3g", 0.5 * limit / b.angular_velocity().norm()) +
-                          " s, or adaptive");
+    if (!diagnostics_.recur("step_too_large_for_spin"))
+      diagnostics_.warn("step_too_large_for_spin", time_,
+                        "body \"" + b.name() + "\" turns " + fmt("%.3g", turn) +
+                            " rad per step (dt·|ω|), more than " +
+                            std::string(to_string(def_.integrator)) + " follows faithfully (" +
+                            fmt("%.3g", limit) + ")",
+                        "use dt <= " + fmt("%.3g", 0.5 * limit / b.angular_velocity().norm()) +
+                            " s, or adaptive");
 }
 
 void World::check_free_flight(std::size_t i, bool contact) {
@@ -196,11 +200,12 @@ void World::check_free_flight(std::size_t i, bool contact) {
   const double scale = b.energy(Vec3::Zero()) + b.mass() * g * tolerances_[i].length_m;
   const double gain = e - flight_start_energy_[i];
   if (gain > kMaxRelativeGain * scale)
-    diagnostics_.warn("free_flight_energy_gain", time_,
-                      "body \"" + b.name() + "\" gained " + fmt("%.3g", gain) + " J (" +
-                          fmt("%.2g", 100.0 * gain / scale) + " %) in free flight",
-                      "use rk4 or adaptive, or a smaller dt (now " + fmt("%.3g", def_.dt_s) +
-                          " s)");
+    if (!diagnostics_.recur("free_flight_energy_gain"))
+      diagnostics_.warn(
+          "free_flight_energy_gain", time_,
+          "body \"" + b.name() + "\" gained " + fmt("%.3g", gain) + " J (" +
+              fmt("%.2g", 100.0 * gain / scale) + " %) in free flight",
+          "use rk4 or adaptive, or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
 }
 
 void World::record_impact(std::size_t i, double t, double speed) {
@@ -296,10 +301,11 @@ void World::advance_body(std::size_t index, double h) {
         }
       }
       if (iter == 200)
-        diagnostics_.warn("contact_tolerance_missed", time_ + (h - remaining),
-                          "the time of an impact of body \"" + b.name() +
-                              "\" could not be located to " + fmt("%.3g", tol.toi_time_s) + " s",
-                          "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
+        if (!diagnostics_.recur("contact_tolerance_missed"))
+          diagnostics_.warn("contact_tolerance_missed", time_ + (h - remaining),
+                            "the time of an impact of body \"" + b.name() +
+                                "\" could not be located to " + fmt("%.3g", tol.toi_time_s) + " s",
+                            "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       tau = lo;
       end = at_lo;
       end_info = lo_info;
@@ -330,10 +336,11 @@ void World::advance_body(std::size_t index, double h) {
       stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
       // A lift of more than 1e-4 ℓ in one stretch is drift the contact model should not see.
       if (depth > 1e-4 * tol.length_m)
-        diagnostics_.warn("contact_tolerance_missed", t_event,
-                          "resting points of body \"" + b.name() + "\" sank " +
-                              fmt("%.3g", depth) + " m into the floor in one step",
-                          "use rk4 or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
+        if (!diagnostics_.recur("contact_tolerance_missed"))
+          diagnostics_.warn("contact_tolerance_missed", t_event,
+                            "resting points of body \"" + b.name() + "\" sank " +
+                                fmt("%.3g", depth) + " m into the floor in one step",
+                            "use rk4 or a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
     }
     if (impact) {
       contact = true;
@@ -346,17 +353,18 @@ void World::advance_body(std::size_t index, double h) {
       stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
       record_impact(index, t_event, speed);
       if (events == Tol::kMaxEventsPerStep)
-        diagnostics_.warn("event_cap_hit", t_event,
-                          "body \"" + b.name() + "\" met " +
-                              std::to_string(Tol::kMaxEventsPerStep) +
-                              " impacts in one step; the rest of the step was made inelastic",
-                          "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
+        if (!diagnostics_.recur("event_cap_hit"))
+          diagnostics_.warn("event_cap_hit", t_event,
+                            "body \"" + b.name() + "\" met " +
+                                std::to_string(Tol::kMaxEventsPerStep) +
+                                " impacts in one step; the rest of the step was made inelastic",
+                            "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       if (++events >= 2 * Tol::kMaxEventsPerStep) {
         // Pathological: finish the step in free flight and lift out, rather than loop on.
         StepInfo info;
-        b.state = integrate_body(
-            index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_), b.state,
-            remaining, &info);
+        b.state =
+            integrate_body(index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_),
+                           b.state, remaining, &info);
         keep_step(index, info);
         const double depth = std::max(0.0, -min_gap(b, b.state, floor_y, all_vertices(b, floor_y)));
         b.state.x.y() += depth;

@@ -138,8 +138,9 @@ TEST(Adaptive, SceneToleranceAndStepStatisticsInRunJson) {
 
 TEST(Adaptive, ToleranceOutOfRangeIsAnError) {
   const TestDir dir;
-  write_scene(dir.path(), "drop.toml",
-              replace(std::string(kDropScene), "duration = 0.5", "duration = 0.5\ntolerance = 0.5"));
+  write_scene(
+      dir.path(), "drop.toml",
+      replace(std::string(kDropScene), "duration = 0.5", "duration = 0.5\ntolerance = 0.5"));
   const RunResult r = run_tumble({"simulate", "drop.toml", "--out", "o"}, dir.path());
   EXPECT_EQ(r.exit_code, 2) << describe(r);
   EXPECT_NE(r.err.find("drop.toml:3:13: tolerance in [simulation] must be in [1e-14, 0.1]"),

@@ -80,7 +80,8 @@ TEST(Extremes, MassDoesNotChangeTheMotion) {
     World other_world(scaled_drop(1.0, mass));
     const std::vector<Vec3> other = positions(other_world, 4000);
     double worst = 0.0;
-    for (std::size_t i = 0; i < unit.size(); ++i) worst = std::max(worst, (other[i] - unit[i]).norm());
+    for (std::size_t i = 0; i < unit.size(); ++i)
+      worst = std::max(worst, (other[i] - unit[i]).norm());
     EXPECT_LT(worst, 1e-9) << "mass " << mass;
   }
 }
