@@ -33,8 +33,13 @@ struct BodyDef {
   /// Characteristic length ℓ for the scale of contact tolerances; 0 = the vertices' largest
   /// extent (a particle, whose one vertex spans nothing, gets its drawn size from the scene).
   double length_m = 0.0;
-  Vec3 position = Vec3::Zero();
-  Quat orientation = Quat::Identity();
+  /// A model's principal axes as a rotation from the body frame to the model's (file's) frame,
+  /// and its centre of mass in the model frame. Boxes and particles: identity and zero. The
+  /// simulation works in the principal frame; `orientation` and what users see are the model's.
+  Quat principal_axes = Quat::Identity();
+  Vec3 com_offset = Vec3::Zero();
+  Vec3 position = Vec3::Zero();         ///< centre of mass, world
+  Quat orientation = Quat::Identity();  ///< of the model frame
   Vec3 velocity = Vec3::Zero();
   Vec3 angular_velocity = Vec3::Zero();  ///< world frame, rad/s
 };
@@ -63,6 +68,14 @@ class RigidBody {
   bool at_rest = false;
 
   Vec3 velocity() const { return state.P * inverse_mass_; }
+  /// Orientation of the model's own frame (as its file has it): the body's principal frame
+  /// rotated back by the principal axes. The state's q for boxes and particles.
+  Quat model_orientation() const {
+    return identity_axes_ ? state.q : Quat(state.q * principal_axes_.conjugate());
+  }
+  const Quat& principal_axes() const { return principal_axes_; }
+  /// Centre of mass in the model frame (zero for boxes and particles).
+  const Vec3& com_offset() const { return com_offset_; }
   /// World inverse inertia R I_body⁻¹ Rᵀ (zero for a particle).
   Mat3 inverse_inertia_world() const;
   Vec3 angular_velocity() const { return inverse_inertia_world() * state.L; }
@@ -76,6 +89,9 @@ class RigidBody {
   Vec3 inertia_body_, inverse_inertia_body_;
   std::vector<Vec3> vertices_;
   double restitution_;
+  Quat principal_axes_;
+  Vec3 com_offset_;
+  bool identity_axes_;  // no rotation at all is applied (keeps boxes' quaternions bit-exact)
 };
 
 }  // namespace tumble

@@ -155,6 +155,7 @@ class World {
   std::vector<ContactTolerances> tolerances_;
   std::vector<AdaptiveController> controllers_;
   std::vector<double> flight_start_energy_;  // energy when the current contact-free stretch began
+  std::vector<int> crossing_;                // scratch: vertices found below the floor
   long steps_ = 0;
   double time_ = 0.0;
   long evaluations_ = 0;

@@ -28,13 +28,13 @@ void TrajectoryWriter::write(double t, const World& world) {
   for (std::size_t i = 0; i < world.bodies().size(); ++i) {
     const RigidBody& b = world.bodies()[i];
     const Vec3 v = b.velocity(), w = b.angular_velocity();
+    const Quat q = b.model_orientation();  // the model's frame, as its file has it
     line_.clear();
     append(line_, t);
     line_ += ',';
     line_ += b.name();
-    for (double x :
-         {b.state.x.x(), b.state.x.y(), b.state.x.z(), b.state.q.w(), b.state.q.x(), b.state.q.y(),
-          b.state.q.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z(), world.energy(i)}) {
+    for (double x : {b.state.x.x(), b.state.x.y(), b.state.x.z(), q.w(), q.x(), q.y(), q.z(), v.x(),
+                     v.y(), v.z(), w.x(), w.y(), w.z(), world.energy(i)}) {
       line_ += ',';
       append(line_, x);
     }

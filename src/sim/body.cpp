@@ -28,13 +28,18 @@ RigidBody::RigidBody(const BodyDef& def)
       inverse_inertia_body_(def.particle ? Vec3(Vec3::Zero())
                                          : Vec3(def.inertia_body.cwiseInverse())),
       vertices_(def.particle ? std::vector<Vec3>{Vec3::Zero()} : def.vertices),
-      restitution_(def.restitution) {
+      restitution_(def.restitution),
+      principal_axes_(def.principal_axes.normalized()),
+      com_offset_(def.com_offset),
+      identity_axes_(def.principal_axes.coeffs() == Quat::Identity().coeffs()) {
   assert(def.mass_kg > 0.0);
   assert(def.particle || (def.inertia_body.array() > 0.0).all());
   state.x = def.position;
   state.P = mass_ * def.velocity;
   if (!particle_) {
-    state.q = def.orientation.normalized();
+    // The scene gives the model's orientation; the state carries the principal frame's.
+    state.q = identity_axes_ ? def.orientation.normalized()
+                             : Quat(def.orientation.normalized() * principal_axes_).normalized();
     state.R = state.q.toRotationMatrix();
     // L = I ω with the world inertia I = R I_body Rᵀ.
     state.L = state.R * inertia_body_.asDiagonal() * (state.R.transpose() * def.angular_velocity);

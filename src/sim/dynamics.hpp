@@ -24,15 +24,17 @@ struct Rate {
   Vec3 tau;
 };
 
-/// A set of a body's contact vertices (at most 8: a box's corners) against the floor, e.g. the
+/// A set of a body's contact vertices (at most kMaxPoints) against the floor, e.g. the
 /// resting contacts held during one stretch of a step.
 struct ContactSet {
+  /// A box has at most 4 points on a plane; a mesh hull's face is reduced to this many.
+  static constexpr int kMaxPoints = 8;
   double floor_height = 0.0;
   int count = 0;
-  int vertex[8] = {};
+  int vertex[kMaxPoints] = {};
   /// Per point: slides with kinetic (Coulomb) friction inside the derivative. Points that do not
   /// slide get a sticking friction impulse after the stretch instead (see World).
-  bool sliding[8] = {};
+  bool sliding[kMaxPoints] = {};
   double friction = 0.0;  ///< Coulomb mu of the floor
   std::span<const int> indices() const { return {vertex, static_cast<std::size_t>(count)}; }
 };

@@ -36,17 +36,22 @@ double min_gap(const RigidBody& b, const BodyState& s, double floor_height, cons
   return lowest;
 }
 
-ContactSet vertices_below(const RigidBody& b, const BodyState& s, double floor_height,
-                          const ContactSet& skip) {
-  ContactSet below;
-  below.floor_height = floor_height;
-  const int n = std::min(static_cast<int>(b.vertices().size()), 8);
+double min_gap(const RigidBody& b, const BodyState& s, double floor_height,
+               const std::vector<int>& set) {
+  double lowest = INFINITY;
+  for (int i : set) lowest = std::min(lowest, vertex_gap(b, s, i, floor_height));
+  return lowest;
+}
+
+void vertices_below(const RigidBody& b, const BodyState& s, double floor_height,
+                    const ContactSet& skip, std::vector<int>& below) {
+  below.clear();
+  const auto held = skip.indices();
+  const int n = static_cast<int>(b.vertices().size());
   for (int i = 0; i < n; ++i) {
-    const auto held = skip.indices();
     if (std::find(held.begin(), held.end(), i) != held.end()) continue;
-    if (vertex_gap(b, s, i, floor_height) < 0.0) below.vertex[below.count++] = i;
+    if (vertex_gap(b, s, i, floor_height) < 0.0) below.push_back(i);
   }
-  return below;
 }
 
 double approach_speed(const RigidBody& b, const ContactSet& c) {
@@ -57,12 +62,64 @@ double approach_speed(const RigidBody& b, const ContactSet& c) {
   return fastest;
 }
 
-ContactSet all_vertices(const RigidBody& b, double floor_height) {
-  ContactSet all;
-  all.floor_height = floor_height;
-  all.count = std::min(static_cast<int>(b.vertices().size()), 8);
-  for (int i = 0; i < all.count; ++i) all.vertex[i] = i;
-  return all;
+double lowest_gap(const RigidBody& b, const BodyState& s, double floor_height) {
+  double lowest = INFINITY;
+  const int n = static_cast<int>(b.vertices().size());
+  for (int i = 0; i < n; ++i) lowest = std::min(lowest, vertex_gap(b, s, i, floor_height));
+  return lowest;
+}
+
+void reduce_to_support(const RigidBody& b, const std::vector<int>& candidates, ContactSet& out) {
+  out.count = 0;
+  if (static_cast<int>(candidates.size()) <= ContactSet::kMaxPoints) {
+    for (int i : candidates) out.vertex[out.count++] = i;
+    return;
+  }
+  // The candidates seen from above (x, z), their 2-D convex hull by Andrew's monotone chain
+  // (ties broken by vertex index, so the result is deterministic).
+  struct P {
+    double x, z;
+    int index;
+  };
+  std::vector<P> p;
+  p.reserve(candidates.size());
+  for (int i : candidates) {
+    const Vec3 w = b.state.R * b.vertices()[i];
+    p.push_back({w.x(), w.z(), i});
+  }
+  std::sort(p.begin(), p.end(), [](const P& l, const P& r) {
+    return l.x < r.x || (l.x == r.x && (l.z < r.z || (l.z == r.z && l.index < r.index)));
+  });
+  auto cross = [](const P& o, const P& a, const P& c) {
+    return (a.x - o.x) * (c.z - o.z) - (a.z - o.z) * (c.x - o.x);
+  };
+  std::vector<P> hull(2 * p.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k > 1 ? k - 1 : k);  // the last point repeats the first
+  if (static_cast<int>(hull.size()) <= ContactSet::kMaxPoints) {
+    for (const P& h : hull) out.vertex[out.count++] = h.index;
+    return;
+  }
+  // More corners than the LCP takes: keep the corner extreme in each of 8 directions 45° apart
+  // (duplicates dropped), which keeps the support polygon up to its finest corners.
+  for (int d = 0; d < 8; ++d) {
+    const double angle = d * (kPi / 4.0);
+    const double cx = std::cos(angle), cz = std::sin(angle);
+    const P* best = &hull[0];
+    for (const P& h : hull)
+      if (h.x * cx + h.z * cz > best->x * cx + best->z * cz) best = &h;
+    const auto chosen = out.indices();
+    if (std::find(chosen.begin(), chosen.end(), best->index) == chosen.end())
+      out.vertex[out.count++] = best->index;
+  }
 }
 
 ContactSet touching_vertices(const RigidBody& b, double floor_height, double touch_m,
@@ -71,11 +128,24 @@ ContactSet touching_vertices(const RigidBody& b, double floor_height, double tou
   c.floor_height = floor_height;
   const Vec3 omega = b.angular_velocity();
   const int n = static_cast<int>(b.vertices().size());
-  for (int i = 0; i < n && c.count < 8; ++i) {
+  int first[ContactSet::kMaxPoints];
+  int found = 0;
+  std::vector<int> many;  // only when a flat hull face puts more than kMaxPoints on the floor
+  for (int i = 0; i < n; ++i) {
     if (vertex_gap(b, b.state, i, floor_height) > touch_m) continue;
     const Vec3 r = b.state.R * b.vertices()[i];
     if (std::abs(point_velocity(b, omega, r).y()) > rest_speed) continue;
-    c.vertex[c.count++] = i;
+    if (found < ContactSet::kMaxPoints) {
+      first[found++] = i;
+    } else {
+      if (many.empty()) many.assign(first, first + found);
+      many.push_back(i);
+    }
+  }
+  if (many.empty()) {
+    for (int i = 0; i < found; ++i) c.vertex[c.count++] = first[i];
+  } else {
+    reduce_to_support(b, many, c);
   }
   return c;
 }

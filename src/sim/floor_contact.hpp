@@ -1,6 +1,8 @@
 #pragma once
 // Geometry and impulses of one body against the floor plane y = height (normal +y).
 
+#include <vector>
+
 #include "dynamics.hpp"
 #include "tumble/body.hpp"
 
@@ -14,18 +16,30 @@ inline double vertex_gap(const RigidBody& b, const BodyState& s, int i, double f
 /// The lowest gap in s of the vertices in `set`.
 double min_gap(const RigidBody& b, const BodyState& s, double floor_height, const ContactSet& set);
 
-/// Vertices below the plane in s, other than those in `skip`.
-ContactSet vertices_below(const RigidBody& b, const BodyState& s, double floor_height,
-                          const ContactSet& skip);
+/// The lowest gap in s of the vertices in `set` (any number of them).
+double min_gap(const RigidBody& b, const BodyState& s, double floor_height,
+               const std::vector<int>& set);
+
+/// Vertices below the plane in s, other than those in `skip`, into `below` (cleared first; a mesh
+/// hull may have any number below at once).
+void vertices_below(const RigidBody& b, const BodyState& s, double floor_height,
+                    const ContactSet& skip, std::vector<int>& below);
+
+/// The lowest gap of all the body's contact vertices in s.
+double lowest_gap(const RigidBody& b, const BodyState& s, double floor_height);
+
+/// Reduces contact candidates to at most ContactSet::kMaxPoints that keep their support polygon
+/// seen along the floor normal: the corners of the candidates' 2-D convex hull, and when there
+/// are more corners than that, the ones extreme in 8 evenly spaced directions. Deterministic.
+/// A box never has more than 4 candidates; a mesh hull's flat face can put dozens on the floor.
+void reduce_to_support(const RigidBody& b, const std::vector<int>& candidates, ContactSet& out);
 
 /// The fastest approach speed (> 0) of the points of `c`, 0 when none approaches.
 double approach_speed(const RigidBody& b, const ContactSet& c);
 
-/// Every contact vertex of the body (at most the first 8).
-ContactSet all_vertices(const RigidBody& b, double floor_height);
-
 /// Vertices of the body's current state that touch the floor (gap <= touch_m); with a finite
-/// `rest_speed`, only those whose normal speed is at most that (resting candidates).
+/// `rest_speed`, only those whose normal speed is at most that (resting candidates). More than
+/// ContactSet::kMaxPoints are reduced to their support polygon (reduce_to_support).
 ContactSet touching_vertices(const RigidBody& b, double floor_height, double touch_m,
                              double rest_speed);
 

@@ -266,8 +266,9 @@ void World::advance_body(std::size_t index, double h) {
     double tau = remaining;
     StepInfo end_info;
     BodyState end = advanced(tau, &end_info);
-    const ContactSet crossing = vertices_below(b, end, floor_y, resting);
-    const bool impact = crossing.count > 0;
+    std::vector<int>& crossing = crossing_;
+    vertices_below(b, end, floor_y, resting, crossing);
+    const bool impact = !crossing.empty();
     if (impact) {
       // Time of impact by the Illinois variant of regula falsi on the lowest crossing vertex's
       // gap, integrating from the stretch's start with the step's own integrator. Bracket
@@ -366,7 +367,7 @@ void World::advance_body(std::size_t index, double h) {
             integrate_body(index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_),
                            b.state, remaining, &info);
         keep_step(index, info);
-        const double depth = std::max(0.0, -min_gap(b, b.state, floor_y, all_vertices(b, floor_y)));
+        const double depth = std::max(0.0, -lowest_gap(b, b.state, floor_y));
         b.state.x.y() += depth;
         stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
         remaining = 0.0;
