@@ -11,9 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "tumble/camera.hpp"  // look_at, perspective: the camera maths the renderer uses
 #include "tumble/image.hpp"
 #include "tumble/scene.hpp"
 #include "tumble/world.hpp"
+#include "tumble/world_builder.hpp"
 
 namespace tumble {
 
@@ -26,7 +28,10 @@ class Renderer {
   /// (llvmpipe) the copy happens at once anyway and Sync saves a memcpy. Auto picks by renderer.
   enum class Readback { Auto, Sync, Async };
 
-  explicit Renderer(const Scene& scene, Readback readback = Readback::Auto);
+  /// `models`: the loaded mesh of each mesh body (uploaded once); may be null for a scene
+  /// without meshes.
+  explicit Renderer(const Scene& scene, Readback readback = Readback::Auto,
+                    const SceneModels* models = nullptr);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -54,9 +59,5 @@ class Renderer {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// Camera maths, exposed for tests: view and projection of a camera looking at `target`.
-Eigen::Matrix4d look_at(const Vec3& eye, const Vec3& target, const Vec3& up);
-Eigen::Matrix4d perspective(double fov_y_deg, double aspect, double near, double far);
 
 }  // namespace tumble

@@ -9,6 +9,7 @@
 
 #include "tumble/scene.hpp"
 #include "tumble/world.hpp"
+#include "tumble/world_builder.hpp"
 
 namespace tumble {
 
@@ -32,6 +33,7 @@ struct RunReport {
   ContactStats contact;
   std::vector<std::filesystem::path> outputs;  ///< hashed when the report is written
   const World* world = nullptr;                ///< for per-body mass properties
+  const SceneModels* models = nullptr;         ///< mesh bodies: volume, axes, hull, repairs
 };
 
 /// Writes run.json atomically at `path`.

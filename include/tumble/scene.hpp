@@ -14,10 +14,13 @@
 #include "tumble/error.hpp"
 #include "tumble/integrators.hpp"
 #include "tumble/math.hpp"
+#include "tumble/mesh.hpp"
 
 namespace tumble {
 
 enum class Shape { Box, Particle, Mesh };
+/// Names of MeshRepair values in enum order, as a scene writes them.
+inline constexpr std::array<std::string_view, 3> kMeshRepairNames = {"none", "orient", "hull"};
 std::string_view to_string(Shape shape);
 
 /// An sRGB colour, 8 bits per channel, as written "#rrggbb" in a scene.
@@ -75,9 +78,11 @@ struct LightSettings {
 struct BodySpec {
   std::string name;
   Shape shape = Shape::Box;
-  Vec3 size{1.0, 1.0, 1.0};  ///< box: full edge lengths; particle: drawn size only
-  std::string mesh;          ///< shape = mesh: path as resolved against the scene's folder
-  double scale = 1.0;
+  Vec3 size{1.0, 1.0, 1.0};   ///< box: full edge lengths; particle: drawn size only
+  std::string mesh;           ///< shape = mesh: path as resolved against the scene's folder
+  SourceLocation mesh_where;  ///< where the scene names the mesh
+  Vec3 scale = Vec3::Ones();  ///< mesh: file units -> metres, per axis
+  MeshRepair repair = MeshRepair::None;
   std::optional<double> mass;     ///< kg; exactly one of mass and density is set
   std::optional<double> density;  ///< kg/m^3
   Vec3 position = Vec3::Zero();   ///< centre of mass, m

@@ -82,6 +82,9 @@ struct ContactTolerances {
 /// The largest extent of a body's contact vertices (box: its longest edge); `fallback` when they
 /// span nothing (a particle, whose one vertex is its centre).
 double body_length(const std::vector<Vec3>& vertices, double fallback);
+/// The length ℓ that scales a body's contact tolerances: its BodyDef::length_m when set, else
+/// the extent of its vertices (1 m when they span nothing).
+double length_scale(const BodyDef& body);
 
 /// One impact event against the floor: when, which body, and how fast its fastest approaching
 /// point came in (m/s, > 0). Impacts slower than the body's rest speed are inelastic.

@@ -83,4 +83,16 @@ void add_diff_command(CLI::App& app, DiffOptions& o);
 /// input or a bad option, (Environment) when a diff image cannot be written.
 int run_diff(const DiffOptions& o);
 
+struct StudyOptions {
+  CommonOptions common;     // --integrator is refused: a study runs every integrator it lists
+  std::string integrators;  // comma-separated; empty: all five
+  std::string dts;          // comma-separated seconds; empty: the scene's dt × 4, 2, 1, 1/2, 1/4
+  std::string tolerances;   // comma-separated; empty: 1e-4, 1e-6, 1e-8, 1e-10
+  std::optional<double> target_error_m;
+  std::optional<int> jobs;  // empty: the hardware's threads
+};
+void add_study_command(CLI::App& app, StudyOptions& o);
+/// Throws tumble::Error (BadInput) for a bad option or a reference run that fails.
+int run_study(const StudyOptions& o);
+
 }  // namespace tumble::cli

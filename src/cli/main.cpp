@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   cli::add_render_command(app, render);
   cli::SimulateOptions simulate;
   cli::add_simulate_command(app, simulate);
+  cli::StudyOptions study;
+  cli::add_study_command(app, study);
   cli::add_info_command(app);
   cli::DiffOptions diff;
   cli::add_diff_command(app, diff);
@@ -38,6 +40,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return cli::run_render(render);
     if (app.got_subcommand("simulate")) return cli::run_simulate(simulate);
+    if (app.got_subcommand("study")) return cli::run_study(study);
     if (app.got_subcommand("info")) return cli::run_info();
     if (app.got_subcommand("diff")) return cli::run_diff(diff);
   } catch (const cli::Interrupted& i) {

@@ -94,12 +94,13 @@ int run_render(const RenderOptions& o) {
   if (want_mp4 && (width % 2 || height % 2))
     bad("H.264 (yuv420p) needs an even width and height; got " + std::to_string(width) + "x" +
         std::to_string(height) + " (use an even --size, or --no-mp4 with --png)");
-  const WorldDef def = make_world_def(scene);
+  const SceneModels models = load_models(scene);
+  const WorldDef def = make_world_def(scene, models);
 
   const fs::path dir = output_dir(o.common, scene);
   if (o.png) make_output_dir(dir / "frames");
   EglContext gl(o.egl_device.value_or(-1));
-  Renderer renderer(scene);
+  Renderer renderer(scene, Renderer::Readback::Auto, &models);
   std::optional<Mp4Writer> mp4;
   if (want_mp4) mp4.emplace(dir / "clip.mp4", Mp4Settings{width, height, fps, o.crf, o.encoder});
 
@@ -245,6 +246,7 @@ int run_render(const RenderOptions& o) {
       report.outputs.push_back(dir / "frames" / frame_name(k));
   report.outputs.insert(report.outputs.end(), still_paths.begin(), still_paths.end());
   report.world = &world;
+  report.models = &models;
   report.times.total_s = seconds_since(start);
   write_run_report(dir / "run.json", report);
   if (!o.common.quiet) {

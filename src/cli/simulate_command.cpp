@@ -25,7 +25,8 @@ int run_simulate(const SimulateOptions& o) {
   const double rate = o.rate_hz.value_or(scene.render.fps);
   if (!std::isfinite(rate) || rate <= 0.0 || rate > 1e6)
     throw Error(ErrorKind::BadInput, "--rate must be a positive number of Hz, at most 1e6");
-  const WorldDef def = make_world_def(scene);
+  const SceneModels models = load_models(scene);
+  const WorldDef def = make_world_def(scene, models);
   const double duration = scene.simulation.duration_s, dt = def.dt_s;
   const long steps = step_count_for(duration, dt);
   const long samples = o.every_step ? steps + 1 : sample_count(duration, rate);
@@ -69,6 +70,7 @@ int run_simulate(const SimulateOptions& o) {
   report.contact = world.contact_stats();
   report.outputs = {dir / "trajectory.csv"};
   report.world = &world;
+  report.models = &models;
   write_run_report(dir / "run.json", report);
   if (!o.common.quiet)
     std::printf("tumble: wrote %s (%ld rows) and %s\n", (dir / "trajectory.csv").c_str(),

@@ -109,12 +109,35 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
   j["outputs"] = outputs;
   ordered_json bodies = ordered_json::array();
   if (r.world)
-    for (const RigidBody& b : r.world->bodies())
-      bodies.push_back({{"name", b.name()},
-                        {"shape", b.is_particle() ? "particle" : "box"},
-                        {"mass_kg", b.mass()},
-                        {"com_offset_m", vec(Vec3::Zero())},
-                        {"principal_moments_kg_m2", vec(b.inertia_body())}});
+    for (std::size_t i = 0; i < r.world->bodies().size(); ++i) {
+      const RigidBody& b = r.world->bodies()[i];
+      const MeshBody* model = r.models ? r.models->model(i) : nullptr;
+      const std::string shape = model ? "mesh" : b.is_particle() ? "particle" : "box";
+      ordered_json body = {{"name", b.name()},
+                           {"shape", shape},
+                           {"mass_kg", b.mass()},
+                           {"com_offset_m", vec(b.com_offset())},
+                           {"principal_moments_kg_m2", vec(b.inertia_body())}};
+      if (model) {
+        const Mat3 axes = b.principal_axes().toRotationMatrix();
+        body["mesh"] = {
+            {"path", r.scene ? r.scene->bodies[i].mesh : std::string()},
+            {"volume_m3", model->mass.volume},
+            {"principal_axes",
+             ordered_json::array({vec(axes.col(0)), vec(axes.col(1)), vec(axes.col(2))})},
+            {"triangles", model->mesh.triangles.size()},
+            {"source_triangles", model->source_triangles},
+            {"welded_vertices", model->welded_vertices},
+            {"degenerate_triangles_dropped", model->degenerate_triangles},
+            {"hull_vertices", model->hull_vertices.size()},
+            {"hull_faces", model->hull_faces},
+            {"repair",
+             r.scene ? std::string(kMeshRepairNames[static_cast<int>(r.scene->bodies[i].repair)])
+                     : std::string()},
+            {"repair_note", model->repair_note}};
+      }
+      bodies.push_back(body);
+    }
   j["bodies"] = bodies;
   write_file_atomically(path, j.dump(2) + "\n");
 }

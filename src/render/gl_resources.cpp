@@ -130,6 +130,36 @@ Mesh make_sphere(int rings, int segments) {
   return upload(v, idx);
 }
 
+Mesh make_model(const TriangleMesh& mesh) {
+  const std::size_t nt = mesh.triangles.size();
+  std::vector<Vec3> face_normal(nt);  // area-weighted (length = 2 × area)
+  std::vector<std::vector<std::uint32_t>> faces_of(mesh.vertices.size());
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+    face_normal[t] = (b - a).cross(c - a);
+    for (std::uint32_t v : tri) faces_of[v].push_back(static_cast<std::uint32_t>(t));
+  }
+  const double crease_cos = std::cos(radians(40.0));
+  std::vector<float> v;
+  v.reserve(nt * 18);
+  std::vector<unsigned> idx;
+  idx.reserve(nt * 3);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Vec3 own = face_normal[t].normalized();
+    for (std::uint32_t corner : mesh.triangles[t]) {
+      Vec3 n = Vec3::Zero();
+      for (std::uint32_t f : faces_of[corner])
+        if (face_normal[f].normalized().dot(own) >= crease_cos) n += face_normal[f];
+      n = n.squaredNorm() > 0.0 ? n.normalized() : own;
+      const Vec3& p = mesh.vertices[corner];
+      for (double x : {p.x(), p.y(), p.z(), n.x(), n.y(), n.z()}) v.push_back(float(x));
+      idx.push_back(static_cast<unsigned>(idx.size()));
+    }
+  }
+  return upload(v, idx);
+}
+
 Mesh make_floor_quad() {
   const std::vector<float> v = {-1, 0, -1, 0, 1, 0, 1,  0, -1, 0, 1, 0,
                                 1,  0, 1,  0, 1, 0, -1, 0, 1,  0, 1, 0};

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "tumble/mesh.hpp"
+
 namespace tumble {
 
 /// Throws tumble::Error (Environment) "OpenGL: what".
@@ -26,5 +28,9 @@ struct Mesh {
 Mesh make_cube();                                     ///< [-0.5, 0.5]³, flat face normals
 Mesh make_sphere(int rings = 16, int segments = 32);  ///< diameter 1, smooth normals
 Mesh make_floor_quad();                               ///< [-1, 1]² at y = 0, normal +y
+/// A model's triangles (model frame), with normals computed per corner: the area-weighted
+/// average of the normals of the faces around the vertex that lie within 40° of the corner's
+/// own face, so curved surfaces shade smoothly and edges stay sharp.
+Mesh make_model(const TriangleMesh& mesh);
 
 }  // namespace tumble

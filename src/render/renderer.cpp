@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "gl_resources.hpp"
+#include "tumble/camera.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -39,33 +40,11 @@ Vec3 floor_tile_color(const Vec3& albedo_srgb, const Vec3& light) {
 
 }  // namespace
 
-Mat4 look_at(const Vec3& eye, const Vec3& target, const Vec3& up) {
-  const Vec3 f = (target - eye).normalized();
-  const Vec3 s = f.cross(up).normalized();
-  const Vec3 u = s.cross(f);
-  Mat4 m = Mat4::Identity();
-  m.block<1, 3>(0, 0) = s.transpose();
-  m.block<1, 3>(1, 0) = u.transpose();
-  m.block<1, 3>(2, 0) = -f.transpose();
-  m(0, 3) = -s.dot(eye);
-  m(1, 3) = -u.dot(eye);
-  m(2, 3) = f.dot(eye);
-  return m;
-}
-
-Mat4 perspective(double fov_y_deg, double aspect, double near, double far) {
-  const double f = 1.0 / std::tan(0.5 * radians(fov_y_deg));
-  Mat4 m = Mat4::Zero();
-  m(0, 0) = f / aspect;
-  m(1, 1) = f;
-  m(2, 2) = (far + near) / (near - far);
-  m(2, 3) = 2.0 * far * near / (near - far);
-  m(3, 2) = -1.0;
-  return m;
-}
-
 struct Renderer::Impl {
   const Scene& scene;
+  const SceneModels* models;
+  std::vector<Mesh> model_meshes;        // per body: its model's triangles (vao 0 for other shapes)
+  std::vector<Vec3> model_lo, model_hi;  // per mesh body: its model's bounding box, model frame
   int width, height, samples = 0;
   Antialias antialias;
   GLuint mesh_program = 0, floor_program = 0, fxaa_program = 0;
@@ -83,11 +62,16 @@ struct Renderer::Impl {
   std::vector<std::uint8_t> sync_frame[2];
   int begun = 0, finished = 0;
 
-  explicit Impl(const Scene& s)
-      : scene(s), width(s.render.width), height(s.render.height), antialias(s.render.antialias) {}
+  Impl(const Scene& s, const SceneModels* m)
+      : scene(s),
+        models(m),
+        width(s.render.width),
+        height(s.render.height),
+        antialias(s.render.antialias) {}
 
   ~Impl() {
     for (Mesh* m : {&cube, &sphere, &floor}) m->release();
+    for (Mesh& m : model_meshes) m.release();
     glDeleteVertexArrays(1, &empty_vao);
     for (GLuint program : {mesh_program, floor_program, fxaa_program}) glDeleteProgram(program);
     const GLuint fbos[] = {ms_fbo, tex_fbo, fbo};
@@ -156,6 +140,20 @@ struct Renderer::Impl {
     cube = make_cube();
     sphere = make_sphere();
     floor = make_floor_quad();
+    // Each model is uploaded once; a frame only sets its transform.
+    model_meshes.resize(scene.bodies.size());
+    model_lo.assign(scene.bodies.size(), Vec3::Constant(-0.5));
+    model_hi.assign(scene.bodies.size(), Vec3::Constant(0.5));
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (scene.bodies[i].shape != Shape::Mesh) continue;
+      const MeshBody* model = models ? models->model(i) : nullptr;
+      if (!model) gl_fail("mesh body \"" + scene.bodies[i].name + "\" has no loaded model");
+      model_meshes[i] = make_model(model->mesh);
+      Vec3 lo = model->mesh.vertices.front(), hi = lo;
+      for (const Vec3& p : model->mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      model_lo[i] = lo;
+      model_hi[i] = hi;
+    }
     if (glGetError() != GL_NO_ERROR) gl_fail("setting up the renderer failed");
   }
 
@@ -176,16 +174,8 @@ struct Renderer::Impl {
 
   void draw(const World& world) {
     const CameraSettings& cam = scene.camera;
-    Vec3 target = cam.target;
-    if (cam.follow)
-      for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-        if (scene.bodies[i].name == *cam.follow) target = world.bodies()[i].state.x;
-    const Mat4 view = look_at(cam.position, target, cam.up);
-    // Depth range from the camera's distance to the scene: a near plane too close wastes depth
-    // precision, too far clips the bodies.
-    const double distance = (cam.position - target).norm();
-    const double near = std::max(0.01, 0.02 * distance), far = 200.0 + 4.0 * distance;
-    const Mat4 view_projection = perspective(cam.fov_deg, double(width) / height, near, far) * view;
+    // The camera maths live in camera.cpp, so `tumble study` measures pixels of this picture.
+    const Mat4 view_projection = camera_view_projection(scene, world);
     const Vec3 light = scene.light.direction.normalized();
 
     glBindFramebuffer(GL_FRAMEBUFFER, antialias == Antialias::Msaa   ? ms_fbo
@@ -273,8 +263,10 @@ struct Renderer::Impl {
       const Mat4 model = model_matrix(world, i);
       Eigen::Array2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
       bool behind = false;
+      const Vec3 &blo = model_lo[i], &bhi = model_hi[i];  // box, particle: the unit cube
       for (int c = 0; c < 8; ++c) {
-        const Vec3 corner((c & 1) ? 0.5 : -0.5, (c & 2) ? 0.5 : -0.5, (c & 4) ? 0.5 : -0.5);
+        const Vec3 corner((c & 1) ? bhi.x() : blo.x(), (c & 2) ? bhi.y() : blo.y(),
+                          (c & 4) ? bhi.z() : blo.z());
         Vec3 world_corner = (model * corner.homogeneous()).head<3>();
         for (int pass = 0; pass < (shadows ? 2 : 1); ++pass) {
           if (pass == 1)  // the same corner flattened onto the floor along the light
@@ -302,15 +294,26 @@ struct Renderer::Impl {
   }
 
   Mat4 model_matrix(const World& world, std::size_t i) const {
-    const BodyState& s = world.bodies()[i].state;
+    const RigidBody& b = world.bodies()[i];
+    const BodyState& s = b.state;
     Mat4 m = Mat4::Identity();
+    if (scene.bodies[i].shape == Shape::Mesh) {
+      // The model's triangles are in its file's frame: rotate by the model's orientation and
+      // put its centre of mass (com_offset in that frame) at the body's position.
+      const Mat3 R = b.model_orientation().toRotationMatrix();
+      m.block<3, 3>(0, 0) = R;
+      m.block<3, 1>(0, 3) = s.x - R * b.com_offset();
+      return m;
+    }
     m.block<3, 3>(0, 0) = s.R * scene.bodies[i].size.asDiagonal();
     m.block<3, 1>(0, 3) = s.x;
     return m;
   }
 
   void draw_mesh(std::size_t i) {
-    const Mesh& mesh = scene.bodies[i].shape == Shape::Particle ? sphere : cube;
+    const Mesh& mesh = scene.bodies[i].shape == Shape::Mesh       ? model_meshes[i]
+                       : scene.bodies[i].shape == Shape::Particle ? sphere
+                                                                  : cube;
     glBindVertexArray(mesh.vao);
     glDrawElements(GL_TRIANGLES, mesh.count, GL_UNSIGNED_INT, nullptr);
   }
@@ -409,7 +412,8 @@ struct Renderer::Impl {
   }
 };
 
-Renderer::Renderer(const Scene& scene, Readback readback) : impl_(std::make_unique<Impl>(scene)) {
+Renderer::Renderer(const Scene& scene, Readback readback, const SceneModels* models)
+    : impl_(std::make_unique<Impl>(scene, models)) {
   impl_->build();
   impl_->setup_readback(readback);
 }

@@ -156,9 +156,10 @@ Quat read_orientation(const toml::table& table, const std::string& file) {
 
 // `number` is the body's 1-based place in the file; it picks the default name and colour.
 BodySpec read_body(const toml::table& table, std::size_t number, const std::string& file) {
-  const TableReader r(table, "[[body]]", file,
-                      {"name", "shape", "size", "mass", "density", "position", "orientation",
-                       "velocity", "angular_velocity", "restitution", "color", "mesh", "scale"});
+  const TableReader r(
+      table, "[[body]]", file,
+      {"name", "shape", "size", "mass", "density", "position", "orientation", "velocity",
+       "angular_velocity", "restitution", "color", "mesh", "scale", "repair"});
   BodySpec b;
   b.where = r.where();
   b.name = r.string("name").value_or("body" + std::to_string(number));
@@ -169,16 +170,24 @@ BodySpec read_body(const toml::table& table, std::size_t number, const std::stri
     shape_names.push_back(to_string(shape));
   r.require("shape", "expected one of: " + join(shape_names));
   b.shape = static_cast<Shape>(*r.choice("shape", shape_names));
-  if (b.shape == Shape::Mesh)
-    fail(r.where("shape"),
-         "shape \"mesh\" is not supported yet (mesh import arrives with assimp support)");
-
-  // Meshes are rejected above, so `mesh` and `scale` can only be misplaced here; scale is still
-  // range-checked first so that the message about a bad value comes before the one about place.
-  b.scale = r.number("scale", kPositive).value_or(b.scale);
-  b.mesh = r.string("mesh").value_or("");
-  r.forbid("mesh", "applies only to shape = \"mesh\"");
-  r.forbid("scale", "applies only to shape = \"mesh\"");
+  // Range-checked before their place, so a bad value is named before a misplaced key.
+  b.scale = r.number_or_vec3("scale", kPositive).value_or(b.scale);
+  const std::optional<std::size_t> repair = r.choice("repair", kMeshRepairNames);
+  if (b.shape == Shape::Mesh) {
+    r.require("mesh", "the model file, relative to the scene (OBJ, STL, PLY, glTF, ...)");
+    const std::string path = *r.string("mesh");
+    if (path.empty()) fail(r.where("mesh"), "mesh in [[body]] must name a file");
+    // Relative to the scene file's folder, so a scene and its models move together.
+    const std::filesystem::path p(path);
+    b.mesh = (p.is_absolute() ? p : std::filesystem::path(file).parent_path() / p).string();
+    b.mesh_where = r.where("mesh");
+    if (repair) b.repair = static_cast<MeshRepair>(*repair);  // kMeshRepairNames in enum order
+    r.forbid("size", "does not apply to a mesh: the model gives its size (use scale)");
+  } else {
+    r.forbid("mesh", "applies only to shape = \"mesh\"");
+    r.forbid("scale", "applies only to shape = \"mesh\"");
+    r.forbid("repair", "applies only to shape = \"mesh\"");
+  }
 
   if (b.shape == Shape::Box) r.require("size", "a box needs its full edge lengths [x, y, z], m");
   // A particle has no extent to simulate; its size is only how big it is drawn, m.

@@ -241,6 +241,17 @@ class TableReader {
   }
 
   // A nested table, such as a body's `orientation = { ... }`.
+  /// A number (the same on every axis) or [x, y, z], each checked against `each`.
+  std::optional<Vec3> number_or_vec3(std::string_view key, const Bounds& each) const {
+    const toml::node* node = find(key);
+    if (!node) return std::nullopt;
+    if (node->is_array()) return vec3(key, each);
+    if (!node->is_number())
+      fail(location(*node, file_), name(key) + " must be a number or an array [x, y, z], got " +
+                                       std::string(type_name(*node)));
+    return Vec3::Constant(to_number(*node, name(key), each));
+  }
+
   const toml::table* table(std::string_view key, std::string_view looks_like) const {
     const toml::node* node = find(key);
     if (!node) return nullptr;

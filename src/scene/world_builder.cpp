@@ -7,7 +7,27 @@
 namespace tumble {
 namespace {
 
-BodyDef make_body(const BodySpec& spec, double default_restitution) {
+// A mesh body: mass from density × volume (or as given), principal moments scaled from unit
+// density, the hull's vertices as contact points in the principal frame through the centre of
+// mass, and the principal axes and centre of mass kept to report and draw the model's own frame.
+void make_mesh_body(const BodySpec& spec, const MeshBody& model, BodyDef& b) {
+  const MassProperties& mp = model.mass;
+  b.mass_kg = spec.mass ? *spec.mass : *spec.density * mp.volume;
+  const double density = b.mass_kg / mp.volume;
+  b.inertia_body = density * mp.principal_moments;
+  const Mat3& axes = mp.principal_axes;  // columns: principal axes in the model frame
+  b.principal_axes = Quat(axes).normalized();
+  b.com_offset = mp.center_of_mass;
+  b.vertices.reserve(model.hull_vertices.size());
+  for (const Vec3& v : model.hull_vertices)
+    b.vertices.push_back(axes.transpose() * (v - mp.center_of_mass));
+  // The model's size sets the scale of its contact tolerances: its largest extent.
+  Vec3 lo = model.mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : model.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  b.length_m = (hi - lo).maxCoeff();
+}
+
+BodyDef make_body(const BodySpec& spec, double default_restitution, const MeshBody* model) {
   BodyDef b;
   b.name = spec.name;
   b.particle = spec.shape == Shape::Particle;
@@ -22,7 +42,12 @@ BodyDef make_body(const BodySpec& spec, double default_restitution) {
     b.length_m = spec.size.maxCoeff();
     return b;
   }
-  assert(spec.shape == Shape::Box);  // meshes are rejected by the loader until they land
+  if (spec.shape == Shape::Mesh) {
+    assert(model);
+    make_mesh_body(spec, *model, b);
+    return b;
+  }
+  assert(spec.shape == Shape::Box);
   const double volume = spec.size.prod();
   b.mass_kg = spec.mass ? *spec.mass : *spec.density * volume;
   b.inertia_body = box_inertia(b.mass_kg, spec.size);
@@ -32,7 +57,35 @@ BodyDef make_body(const BodySpec& spec, double default_restitution) {
 
 }  // namespace
 
+SceneModels load_models(const Scene& scene) {
+  SceneModels models;
+  models.bodies.resize(scene.bodies.size());
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& spec = scene.bodies[i];
+    if (spec.shape != Shape::Mesh) continue;
+    MeshLoadOptions options;
+    options.scale = spec.scale;
+    options.repair = spec.repair;
+    try {
+      models.bodies[i] = std::make_shared<const MeshBody>(load_mesh_body(spec.mesh, options));
+    } catch (const Error& e) {
+      // The error points into the model file; say which body of which scene named it, too.
+      const SourceLocation& at = spec.mesh_where;
+      throw Error(e.kind(),
+                  std::string(e.what()) + " [the mesh of body \"" + spec.name + "\", " +
+                      at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
+                      "]",
+                  e.where());
+    }
+  }
+  return models;
+}
+
 WorldDef make_world_def(const Scene& scene) {
+  return make_world_def(scene, load_models(scene));
+}
+
+WorldDef make_world_def(const Scene& scene, const SceneModels& models) {
   const SimulationSettings& sim = scene.simulation;
   WorldDef def;
   def.dt_s = sim.dt_s;
@@ -44,15 +97,14 @@ WorldDef make_world_def(const Scene& scene) {
   def.angular_drag = sim.angular_drag;
   if (scene.floor) def.floor = FloorDef{scene.floor->height, scene.floor->friction};
   const double default_restitution = scene.floor ? scene.floor->restitution : 0.5;
-  for (const BodySpec& spec : scene.bodies) {
-    def.bodies.push_back(make_body(spec, default_restitution));
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodySpec& spec = scene.bodies[i];
+    def.bodies.push_back(make_body(spec, default_restitution, models.model(i)));
     if (!def.floor) continue;
     // A body must start on or above the floor: a start inside it has no physical meaning.
     const RigidBody body(def.bodies.back());
     const double touch =
-        ContactTolerances::for_body(body_length(body.vertices(), def.bodies.back().length_m),
-                                    def.gravity, def.dt_s)
-            .touch_m;
+        ContactTolerances::for_body(length_scale(def.bodies.back()), def.gravity, def.dt_s).touch_m;
     double lowest = INFINITY;
     for (const Vec3& v : body.vertices()) lowest = std::min(lowest, (body.state.R * v).y());
     const double depth = def.floor->height - (body.state.x.y() + lowest);

@@ -73,13 +73,16 @@ double body_length(const std::vector<Vec3>& vertices, double fallback) {
   return extent > 0.0 ? extent : fallback;
 }
 
+double length_scale(const BodyDef& body) {
+  return body.length_m > 0.0 ? body.length_m : body_length(body.vertices, 1.0);
+}
+
 World::World(const WorldDef& def) : def_(def) {
   assert(def.dt_s > 0.0);
   bodies_.reserve(def.bodies.size());
   for (const BodyDef& b : def.bodies) {
     bodies_.emplace_back(b);
-    const double length = b.length_m > 0.0 ? b.length_m : body_length(b.vertices, 1.0);
-    tolerances_.push_back(Tol::for_body(length, def.gravity, def.dt_s));
+    tolerances_.push_back(Tol::for_body(length_scale(b), def.gravity, def.dt_s));
     flight_start_energy_.push_back(bodies_.back().energy(def.gravity));
   }
   controllers_.resize(bodies_.size());

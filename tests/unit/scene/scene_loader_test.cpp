@@ -78,7 +78,7 @@ mass = 1
   const BodySpec& b = scene.bodies[0];
   EXPECT_EQ(b.name, "body1");
   EXPECT_EQ(b.shape, Shape::Box);
-  EXPECT_EQ(b.scale, 1.0);
+  EXPECT_EQ(b.scale, Vec3::Ones());
   EXPECT_EQ(b.mass, 1.0);
   EXPECT_FALSE(b.density.has_value());
   EXPECT_EQ(b.position, Vec3::Zero());
@@ -564,10 +564,36 @@ TEST(SceneLoader, UnknownShapeListsTheChoices) {
                       R"(unknown shape "sphere" (expected one of: box, particle, mesh))"));
 }
 
-TEST(SceneLoader, MeshShapeIsNotSupportedYet) {
-  EXPECT_TRUE(FailsAt("[[body]]\nshape = \"mesh\"\nmesh = \"bunny.obj\"\nmass = 1\n", 2, 9,
-                      R"(shape "mesh" is not supported yet (mesh import arrives with assimp )"
-                      R"(support))"));
+TEST(SceneLoader, MeshBodyResolvesItsFileAgainstTheScenesFolder) {
+  const Scene scene = parse_scene(
+      "[[body]]\nshape = \"mesh\"\nmesh = \"models/bunny.obj\"\ndensity = 1000\n"
+      "scale = [0.01, 0.02, 0.03]\nrepair = \"orient\"\n",
+      "scenes/test.toml");
+  const BodySpec& b = scene.bodies.at(0);
+  EXPECT_EQ(b.shape, Shape::Mesh);
+  EXPECT_EQ(b.mesh, "scenes/models/bunny.obj");
+  EXPECT_EQ(b.mesh_where.line, 3);
+  EXPECT_EQ(b.scale, Vec3(0.01, 0.02, 0.03));
+  EXPECT_EQ(b.repair, MeshRepair::Orient);
+  EXPECT_EQ(parse_scene("[[body]]\nshape = \"mesh\"\nmesh = \"/m/a.stl\"\nmass = 1\nscale = 2\n",
+                        "s/t.toml")
+                .bodies.at(0)
+                .scale,
+            Vec3::Constant(2.0));
+}
+
+TEST(SceneLoader, MeshBodyNeedsItsFileAndNoSize) {
+  EXPECT_TRUE(
+      FailsAt("[[body]]\nshape = \"mesh\"\nmass = 1\n", 1, 1, R"(missing key "mesh" in [[body]])"));
+  EXPECT_TRUE(FailsAt("[[body]]\nshape = \"mesh\"\nmesh = \"a.obj\"\nmass = 1\nsize = [1, 1, 1]\n",
+                      5, 8, "size in [[body]] does not apply to a mesh"));
+  EXPECT_TRUE(FailsAt("[[body]]\nshape = \"mesh\"\nmesh = \"a.obj\"\nmass = 1\nrepair = \"fix\"\n",
+                      5, 10, R"(expected one of: none, orient, hull)"));
+  EXPECT_TRUE(FailsAt("[[body]]\nshape = \"mesh\"\nmesh = \"a.obj\"\nmass = 1\nscale = \"big\"\n",
+                      5, 9, "scale in [[body]] must be a number or an array [x, y, z]"));
+  EXPECT_TRUE(
+      FailsAt("[[body]]\nshape = \"mesh\"\nmesh = \"a.obj\"\nmass = 1\nscale = [1, -1, 1]\n", 5, 13,
+              "element 2 of scale in [[body]] must be > 0, got -1"));
 }
 
 TEST(SceneLoader, MeshKeysAreOnlyForMeshes) {
@@ -575,6 +601,8 @@ TEST(SceneLoader, MeshKeysAreOnlyForMeshes) {
                       5, 8, R"(mesh in [[body]] applies only to shape = "mesh")"));
   EXPECT_TRUE(FailsAt("[[body]]\nshape = \"box\"\nsize = [1, 1, 1]\nmass = 1\nscale = 2\n", 5, 9,
                       R"(scale in [[body]] applies only to shape = "mesh")"));
+  EXPECT_TRUE(FailsAt("[[body]]\nshape = \"box\"\nsize = [1, 1, 1]\nmass = 1\nrepair = \"hull\"\n",
+                      5, 10, R"(repair in [[body]] applies only to shape = "mesh")"));
 }
 
 TEST(SceneLoader, ScaleMustBePositive) {

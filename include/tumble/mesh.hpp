@@ -1,0 +1,117 @@
+#pragma once
+/// Closed triangle meshes as rigid bodies: loading through assimp, welding, topology checks and
+/// repairs, exact mass properties (divergence theorem), the convex hull (Qhull) and contact-point
+/// reduction. Plain data in, plain data out: this layer knows nothing of scenes, worlds or GL.
+/// Everything is in the model file's own frame (after `scale`, in metres); nothing is moved to the
+/// centre of mass or rotated to principal axes, so "identity" always means "as the file has it".
+/// Reference for users: docs/meshes.md.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tumble/math.hpp"
+
+namespace tumble {
+
+/// What `load_mesh_body` may change in a model that is not a clean closed solid.
+enum class MeshRepair {
+  None,    ///< nothing: every defect is an error
+  Orient,  ///< make the winding consistent and every shell face outward (flip inside-out parts)
+  Hull,    ///< replace the model by its convex hull (simulated and rendered); any input with volume
+};
+
+struct MeshLoadOptions {
+  Vec3 scale = Vec3::Ones();  ///< file units -> metres, per axis; each finite and > 0
+  MeshRepair repair = MeshRepair::None;
+  std::uintmax_t max_file_bytes = 256u << 20;  ///< the model file and each file it references
+  std::size_t max_triangles = 2'000'000;       ///< after triangulation, over all meshes and nodes
+};
+
+/// Welded, consistently wound triangles: counter-clockwise seen from outside (the right-hand
+/// normal points out of the solid). File frame, metres. No triangle has zero area.
+struct TriangleMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+/// Mass properties of the solid at unit density (1 kg/m^3): multiply the volume and the inertia
+/// by the density to get the mass and the inertia in kg, kg·m².
+struct MassProperties {
+  double volume = 0;       ///< m^3, > 0 for a valid solid
+  Vec3 center_of_mass = Vec3::Zero();  ///< file frame, m
+  Mat3 inertia_com = Mat3::Zero();     ///< about the centre of mass, file axes, unit density
+  /// Principal moments, unit density: principal_moments[i] is the moment about column i of
+  /// `principal_axes` (not sorted; see below).
+  Vec3 principal_moments = Vec3::Zero();
+  /// Rotation (det +1) whose columns are principal axes in the file frame, chosen as the one
+  /// closest to the identity: a box-shaped model keeps the file's axes (identity, its moments
+  /// in x, y, z order), and where moments are equal (within 1e-6 relative: a cube, a sphere, a
+  /// regular tetrahedron) the file's own axes are kept in the equal-moment subspace.
+  Mat3 principal_axes = Mat3::Identity();
+};
+
+/// Principal moments and axes of a symmetric inertia tensor, by the rule of
+/// MassProperties::principal_axes (closest rotation to the identity; equal moments keep the
+/// given axes). inertia == axes * diag(moments) * axes^T to 1e-6 of the largest moment.
+struct PrincipalFrame {
+  Vec3 moments = Vec3::Zero();
+  Mat3 axes = Mat3::Identity();
+};
+PrincipalFrame principal_frame(const Mat3& inertia);
+
+/// A loaded model, checked and ready to become a body.
+struct MeshBody {
+  TriangleMesh mesh;                ///< what is rendered (after any repair)
+  MassProperties mass;              ///< of the solid that is simulated (the hull when repair = hull)
+  std::vector<Vec3> hull_vertices;  ///< convex hull vertices, file frame, sorted by (x, y, z)
+  std::size_t hull_faces = 0;       ///< faces of the hull, coplanar triangles merged into one
+  std::string repair_note;          ///< what a repair changed; "" when nothing was changed
+  std::size_t source_triangles = 0;      ///< triangles in the file, after triangulation
+  std::size_t welded_vertices = 0;       ///< distinct vertices after welding
+  std::size_t degenerate_triangles = 0;  ///< zero-area triangles dropped (see docs/meshes.md)
+};
+
+/// Loads and checks a closed model; throws tumble::Error (BadInput, the file as its location,
+/// so `describe()` reads "FILE: problem") for a missing, unreadable, unparseable or too large
+/// file, a format outside the allow-list, and a model that is not a valid solid (not closed,
+/// non-manifold, inconsistently wound, inside-out, without volume, self-intersecting), each
+/// with counts and an example location in file units.
+MeshBody load_mesh_body(const std::filesystem::path& file, const MeshLoadOptions& options);
+
+/// The file extensions `load_mesh_body` accepts, lower case, without the dot.
+const std::vector<std::string>& mesh_file_extensions();
+
+/// Volume, centre of mass and inertia of the solid bounded by a closed, outward-wound mesh, by
+/// the divergence theorem (Mirtich 1996, "Fast and accurate computation of polyhedral mass
+/// properties"; Eberly, "Polyhedral Mass Properties (Revisited)"). An inside-out mesh gives a
+/// negative volume; an open one, a meaningless result: check the topology first.
+MassProperties mass_properties(const TriangleMesh& mesh);
+
+/// The convex hull as a closed, outward-wound triangle mesh.
+struct ConvexHull {
+  TriangleMesh mesh;          ///< vertices sorted by (x, y, z); faces fan-triangulated
+  std::size_t faces = 0;      ///< hull faces before triangulation (a cube: 6)
+};
+
+/// Convex hull of a point set (Qhull, libqhull_r, with its default facet merging). Throws
+/// tumble::Error (BadInput, no location) when the points span no volume (fewer than 4, all on
+/// a line or in a plane, to Qhull's precision), saying so.
+ConvexHull convex_hull(const std::vector<Vec3>& points);
+/// The vertices of convex_hull(points), sorted by (x, y, z).
+std::vector<Vec3> convex_hull_vertices(const std::vector<Vec3>& points);
+
+/// Reduces contact candidates lying (nearly) in one plane with normal `normal` to at most
+/// `max_points` of them that keep their support polygon: the corners of their 2-D convex hull
+/// (points on its edges or inside it are dropped), most extreme first: the first is the corner
+/// farthest from the corners' centroid, the second the corner farthest from it, and each next
+/// one the corner farthest outside the polygon of those already chosen. When the hull has more
+/// than `max_points` corners, the first `max_points` of that order are returned. Returns
+/// indices into `points`; deterministic (ties go to the lower index).
+std::vector<int> reduce_support_points(const std::vector<Vec3>& points, const Vec3& normal,
+                                       int max_points);
+
+}  // namespace tumble

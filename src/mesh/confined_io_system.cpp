@@ -1,0 +1,54 @@
+#include "confined_io_system.hpp"
+
+#include <algorithm>
+#include <string_view>
+#include <system_error>
+
+namespace tumble::mesh_detail {
+
+namespace fs = std::filesystem;
+
+ConfinedIOSystem::ConfinedIOSystem(const fs::path& model_file, std::uintmax_t max_file_bytes)
+    : max_file_bytes_(max_file_bytes) {
+  std::error_code ec;
+  model_ = fs::weakly_canonical(model_file, ec);
+  folder_ = model_.parent_path();
+}
+
+std::string ConfinedIOSystem::check(const char* file) const {
+  if (file == nullptr) return "no file name";
+  std::error_code ec;
+  const fs::path path = fs::weakly_canonical(fs::path(file), ec);
+  if (ec) return "cannot resolve \"" + std::string(file) + "\"";
+  if (path != model_) {
+    // Inside the model's folder: the relative path from the folder must not climb out of it.
+    const fs::path relative = path.lexically_relative(folder_);
+    if (relative.empty() || *relative.begin() == "..")
+      return "refers to \"" + std::string(file) + "\", outside the model's folder";
+  }
+  if (!fs::is_regular_file(path, ec)) return "";  // assimp reports a missing file itself
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  if (!ec && bytes > max_file_bytes_)
+    return "refers to \"" + std::string(file) + "\" of " + std::to_string(bytes) +
+           " bytes, above the limit of " + std::to_string(max_file_bytes_);
+  return "";
+}
+
+bool ConfinedIOSystem::Exists(const char* file) const {
+  return check(file).empty() && DefaultIOSystem::Exists(file);
+}
+
+Assimp::IOStream* ConfinedIOSystem::Open(const char* file, const char* mode) {
+  const std::string_view m = mode != nullptr ? mode : "rb";
+  if (m.find_first_of("wa+") != std::string_view::npos) {
+    refusal_ = "tried to write \"" + std::string(file != nullptr ? file : "") + "\"";
+    return nullptr;
+  }
+  if (std::string why = check(file); !why.empty()) {
+    refusal_ = std::move(why);
+    return nullptr;
+  }
+  return DefaultIOSystem::Open(file, mode);
+}
+
+}  // namespace tumble::mesh_detail

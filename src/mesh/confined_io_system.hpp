@@ -1,0 +1,35 @@
+#pragma once
+// The file access assimp gets while it reads one model: read-only, only the model file and files
+// in its folder or below (a glTF's buffers, an OBJ's materials), each at most a size limit. A
+// model cannot make tumble read /etc/passwd into its vertices, nor a 10 GB "buffer".
+
+#include <assimp/DefaultIOSystem.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace tumble::mesh_detail {
+
+class ConfinedIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  ConfinedIOSystem(const std::filesystem::path& model_file, std::uintmax_t max_file_bytes);
+
+  bool Exists(const char* file) const override;
+  Assimp::IOStream* Open(const char* file, const char* mode = "rb") override;
+
+  /// Why the last refused Open was refused ("" when none was): assimp's own message for a
+  /// missing referenced file does not say that tumble refused it.
+  const std::string& refusal() const { return refusal_; }
+
+ private:
+  /// "" when `file` may be read, else the reason it may not.
+  std::string check(const char* file) const;
+
+  std::filesystem::path model_;   // canonical
+  std::filesystem::path folder_;  // canonical folder of the model
+  std::uintmax_t max_file_bytes_;
+  std::string refusal_;
+};
+
+}  // namespace tumble::mesh_detail

@@ -1,0 +1,124 @@
+#include "format_guard.hpp"
+
+#include <array>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace tumble::mesh_detail {
+namespace {
+
+// Headers longer than this are not PLY headers anyone writes (they list a few elements).
+constexpr std::size_t kMaxPlyHeader = 64 * 1024;
+
+// Bytes of a PLY scalar type (Bourke's names and the sized aliases), 0 when unknown.
+std::size_t ply_type_size(std::string_view type) {
+  static constexpr std::array<std::pair<std::string_view, std::size_t>, 16> kTypes = {{
+      {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1},
+      {"short", 2}, {"ushort", 2}, {"int16", 2}, {"uint16", 2},
+      {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8},
+  }};
+  for (const auto& [name, size] : kTypes)
+    if (name == type) return size;
+  return 0;
+}
+
+// assimp 5.2.5's PLY reader loops forever on a header it cannot finish (no end_header, or a
+// malformed property line) and trusts element counts. The header is checked line by line
+// against the PLY grammar, and the counts against the bytes that follow it.
+std::string guard_ply(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(kMaxPlyHeader, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::error_code ec;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(file, ec);
+
+  std::istringstream lines(head);
+  std::string line;
+  std::size_t line_number = 0, header_bytes = 0;
+  bool ascii = false, ended = false;
+  struct Element {
+    std::uintmax_t count = 0;
+    std::size_t fixed_bytes = 0;  // binary: scalar properties plus each list's count field
+    std::size_t properties = 0;
+  };
+  std::vector<Element> elements;
+  auto bad = [&](const std::string& why) {
+    return "not a valid PLY file: line " + std::to_string(line_number) + ": " + why;
+  };
+  while (!ended && std::getline(lines, line)) {
+    ++line_number;
+    header_bytes += line.size() + 1;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (line_number == 1) {
+      if (line != "ply") return bad("the first line must be \"ply\"");
+      continue;
+    }
+    if (keyword == "format") {
+      std::string kind, version;
+      words >> kind >> version;
+      if (kind != "ascii" && kind != "binary_little_endian" && kind != "binary_big_endian")
+        return bad("unknown format \"" + kind + "\"");
+      ascii = kind == "ascii";
+    } else if (keyword == "comment" || keyword == "obj_info") {
+    } else if (keyword == "element") {
+      std::string name;
+      long long count = -1;
+      if (!(words >> name >> count) || count < 0) return bad("an element needs a name and a count");
+      elements.push_back({static_cast<std::uintmax_t>(count), 0, 0});
+    } else if (keyword == "property") {
+      if (elements.empty()) return bad("a property before any element");
+      std::string type, name;
+      if (!(words >> type)) return bad("a property needs a type");
+      if (type == "list") {
+        std::string count_type, item_type;
+        if (!(words >> count_type >> item_type >> name) || ply_type_size(count_type) == 0 ||
+            ply_type_size(item_type) == 0)
+          return bad("a list property needs a count type, an item type and a name");
+        elements.back().fixed_bytes += ply_type_size(count_type);
+      } else {
+        if (!(words >> name) || ply_type_size(type) == 0)
+          return bad("unknown property type \"" + type + "\"");
+        elements.back().fixed_bytes += ply_type_size(type);
+      }
+      ++elements.back().properties;
+    } else if (keyword == "end_header") {
+      ended = true;
+    } else {
+      return bad("unknown header line \"" + line.substr(0, 40) + "\"");
+    }
+  }
+  if (!ended) return "not a valid PLY file: no end_header in its first 64 KiB";
+  // Each element needs at least its fixed bytes (binary) or a character and a separator per
+  // value (ASCII); more than the file holds is a corrupt or hostile count.
+  const std::uintmax_t body = file_bytes > header_bytes ? file_bytes - header_bytes : 0;
+  std::uintmax_t needed = 0;
+  for (const Element& e : elements) {
+    const std::uintmax_t per = ascii ? 2 * e.properties : e.fixed_bytes;
+    if (per > 0 && e.count > (body + 1) / per)
+      return "not a valid PLY file: its header declares " + std::to_string(e.count) +
+             " elements, more than its " + std::to_string(body) + " bytes of data can hold";
+    needed += e.count * per;
+  }
+  if (needed > body + 1)
+    return "not a valid PLY file: its header declares more data than its " +
+           std::to_string(body) + " bytes hold";
+  return "";
+}
+
+}  // namespace
+
+std::string guard_format(const std::filesystem::path& file, const std::string& extension) {
+  if (extension == "ply") return guard_ply(file);
+  return "";
+}
+
+}  // namespace tumble::mesh_detail

@@ -1,0 +1,161 @@
+// run_study() as a whole: the rows it makes, diverged runs as rows, results independent of the
+// number of threads, the recommendation and the target, and the CSV they are written as.
+#include "tumble/study.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "../../../src/study/run_record.hpp"
+
+namespace tumble::study {
+namespace {
+
+// A short version of the built-in scene: the seed's tilted, spinning box dropped on a floor.
+Scene short_drop() {
+  Scene s = default_scene();
+  s.simulation.duration_s = 1.0;
+  s.render.width = 320;
+  s.render.height = 180;
+  return s;
+}
+
+StudyPlan full_plan(const Scene& s, int jobs) {
+  StudyPlan plan;
+  plan.integrators = {Integrator::Euler, Integrator::SymplecticEuler, Integrator::Midpoint,
+                      Integrator::Rk4, Integrator::Adaptive};
+  plan.dts_s = default_dts(s.simulation.dt_s);
+  plan.tolerances.assign(kDefaultTolerances.begin(), kDefaultTolerances.end());
+  plan.target_error_m = 1e-3;
+  plan.jobs = jobs;
+  return plan;
+}
+
+// The full default study of the short drop on 1 and on 3 threads, computed once for the tests
+// below (the sanitizer build runs them too).
+const StudyResult& shared_study(int jobs) {
+  static const StudyResult one = run_study(short_drop(), full_plan(short_drop(), 1));
+  static const StudyResult three = run_study(short_drop(), full_plan(short_drop(), 3));
+  return jobs == 1 ? one : three;
+}
+
+std::vector<std::vector<std::string>> csv_cells(const std::string& csv) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(csv);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::size_t begin = 0;
+    for (std::size_t comma; (comma = line.find(',', begin)) != std::string::npos; begin = comma + 1)
+      cells.push_back(line.substr(begin, comma - begin));
+    cells.push_back(line.substr(begin));
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(SampleTimes, FrameTimesThenTheEnd) {
+  const std::vector<double> t = sample_times(1.0, 60);
+  ASSERT_EQ(t.size(), 61u);  // k/60 for k = 0 … 59, then t = 1
+  EXPECT_EQ(t[0], 0.0);
+  EXPECT_EQ(t[59], 59.0 / 60.0);
+  EXPECT_EQ(t[60], 1.0);
+  // round(1.01·60) = 61 frames, the last at 1 s; the end follows.
+  EXPECT_EQ(sample_times(1.01, 60).size(), 62u);
+}
+
+TEST(Study, OneRowPerSettingAndTheSameResultsOnAnyNumberOfThreads) {
+  const Scene s = short_drop();
+  const StudyResult& one = shared_study(1);
+  const StudyResult& three = shared_study(3);
+  ASSERT_EQ(one.rows.size(), 4u * 5u + 4u);
+  EXPECT_EQ(one.rows[0].setting.integrator, Integrator::Euler);
+  EXPECT_EQ(one.rows[0].setting.dt_s, 4.0 * s.simulation.dt_s);
+  EXPECT_EQ(one.rows[20].setting.integrator, Integrator::Adaptive);
+  EXPECT_EQ(one.rows[20].setting.dt_s, s.simulation.dt_s);  // the largest step
+  EXPECT_EQ(*one.rows[23].setting.tolerance, 1e-10);
+
+  // Everything but wall_s (column 6) is identical.
+  auto without_wall = [](const StudyResult& r) {
+    std::vector<std::vector<std::string>> cells = csv_cells(study_csv(r));
+    for (auto& row : cells) row.erase(row.begin() + 5);
+    return cells;
+  };
+  EXPECT_EQ(without_wall(one), without_wall(three));
+  EXPECT_EQ(study_svg(one).substr(0, 5), "<svg ");
+}
+
+TEST(Study, RecommendsTheCheapestIndistinguishableRun) {
+  const StudyResult& r = shared_study(1);
+  ASSERT_TRUE(r.recommended.has_value());
+  const RunRow& best = r.rows[*r.recommended];
+  EXPECT_TRUE(best.indistinguishable);
+  EXPECT_LT(best.pixel_error_px, kIndistinguishablePx);
+  for (const RunRow& row : r.rows)
+    if (!row.diverged && row.indistinguishable) {
+      EXPECT_GE(row.evaluations, best.evaluations);
+    }
+  // Euler at 4 dt is visibly off (tens of pixels at this size), so not every run qualifies.
+  EXPECT_FALSE(r.rows[0].indistinguishable);
+}
+
+TEST(Study, TargetErrorNamesTheCheapestRunReachingIt) {
+  const StudyResult& r = shared_study(1);
+  ASSERT_TRUE(r.target.has_value());
+  const RunRow& t = r.rows[*r.target];
+  EXPECT_LE(t.error_m + r.reference.uncertainty_m, 1e-3);
+  for (const RunRow& row : r.rows)
+    if (!row.diverged && row.error_m + r.reference.uncertainty_m <= 1e-3) {
+      EXPECT_GE(row.evaluations, t.evaluations);
+    }
+  EXPECT_NE(study_markdown(r).find("Target error 0.001 m"), std::string::npos);
+}
+
+TEST(Study, ADivergedRunIsARowWithEmptyNumbers) {
+  // Stiff drag (c/m = 1e4 /s): explicit Euler at dt = 0.01 multiplies the velocity by -99 each
+  // step and overflows; at dt = 1e-4 it is stable. The reference runs at 1e-4 / 8.
+  const Scene s = parse_scene(R"([simulation]
+duration = 2.0
+linear_drag = 10000.0
+[[body]]
+name = "ball"
+shape = "particle"
+mass = 1.0
+velocity = [1.0, 0.0, 0.0]
+)",
+                              "stiff.toml");
+  StudyPlan plan;
+  plan.integrators = {Integrator::Euler};
+  plan.dts_s = {0.01, 1e-4};
+  const StudyResult r = run_study(s, plan);
+  ASSERT_EQ(r.rows.size(), 2u);
+  EXPECT_TRUE(r.rows[0].diverged);
+  EXPECT_NE(r.rows[0].failure.find("stopped being finite"), std::string::npos);
+  EXPECT_FALSE(r.rows[1].diverged);
+  const auto cells = csv_cells(study_csv(r));
+  ASSERT_EQ(cells.size(), 3u);
+  const std::vector<std::string>& columns = study_csv_columns();
+  ASSERT_EQ(cells[1].size(), columns.size());
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const std::string& v = cells[1][c];
+    const std::string& name = columns[c];
+    const bool flag = name == "trusted" || name == "indistinguishable" || name == "pareto";
+    const std::string expected = name == "integrator" ? "euler"
+                                 : name == "dt"       ? "0.01"
+                                 : name == "status"   ? "diverged"
+                                 : flag               ? "false"
+                                                      : "";
+    EXPECT_EQ(v, expected) << name;
+  }
+  EXPECT_EQ(cells[2][columns.size() - 5], "ok");
+}
+
+TEST(StudyCsv, HeaderStartsWithTheSpecColumns) {
+  const std::string csv = study_csv(StudyResult{});
+  EXPECT_EQ(csv.rfind("integrator,dt,tolerance,steps,evaluations,wall_s,error,pixel_error,"
+                      "energy_drift,",
+                      0),
+            0u);
+}
+
+}  // namespace
+}  // namespace tumble::study
