@@ -61,7 +61,8 @@ struct ContactTolerances {
   /// Below the rest speed an impact is inelastic (e = 0), so bouncing ends instead of going Zeno.
   /// It is the larger of 1 cm/s at 1 m (a bounce that would rise v²/2g ≈ 5 µm, 5e-6 ℓ) and the
   /// speed gravity adds in two steps, g·2dt: a fixed-step scheme cannot tell slower bounces from
-  /// resting (with the seed's dt = 1/30 s that is 0.65 m/s, a 2 cm hop).
+  /// resting (with the seed's dt = 1/30 s that is 0.65 m/s, a 2 cm hop). The adaptive
+  /// integrator controls its error in every substep: it gets the small-dt limit (dt = 0).
   double rest_speed_mps = 1e-2;
   /// Resting points the floor holds (with contact forces) separate no faster than this (1 µm/s
   /// at 1 m): a force at a point that moves away would do work. After an inelastic impulse, held
