@@ -41,7 +41,8 @@ void BM_BoxRestingOnFloor(benchmark::State& state) {
 }
 
 // One unit box sliding and spinning on a frictionless floor: never at rest, so every derivative
-// evaluation solves the resting-contact LCP over its four bottom corners.
+// evaluation needs its contact forces: the resting-face wrench (a 3×3 solve) by default; with
+// range(1) = 1 the general LCP over its four bottom corners (the reference path).
 void BM_BoxSlidingOnFloor(benchmark::State& state) {
   WorldDef def;
   def.integrator = kIntegrators[state.range(0)];
@@ -50,7 +51,42 @@ void BM_BoxSlidingOnFloor(benchmark::State& state) {
   b.velocity = Vec3(1.0, 0.0, 0.5);
   b.angular_velocity = Vec3(0.0, 1.0, 0.0);
   def.bodies.push_back(b);
+  def.general_contact_only = state.range(1) == 1;
   run(state, World(def));
+  if (def.general_contact_only)
+    state.SetLabel(std::string(to_string(def.integrator)) + " (general LCP)");
+}
+
+// The issue's awake-contact scenes at its settings (rk4, dt = 1e-5): a box sliding with
+// friction μ = 0.5 (kinetic friction solved with the normal forces: the general LCP), and the
+// chamfered die mesh (24 hull vertices, 8 on a face) spinning on its face without friction.
+void BM_AwakeContact(benchmark::State& state) {
+  Scene scene = parse_scene(state.range(0) == 0 ? R"([simulation]
+dt = 1e-5
+[floor]
+friction = 0.5
+[[body]]
+shape = "box"
+size = [1.0, 1.0, 1.0]
+mass = 1.0
+position = [0.0, 0.5, 0.0]
+velocity = [3.0, 0.0, 1.5]
+angular_velocity = [0.0, 1.0, 0.0]
+)"
+                                                : R"([simulation]
+dt = 1e-5
+[floor]
+[[body]]
+shape = "mesh"
+mesh = ")" + std::string(TUMBLE_SOURCE_DIR) + R"(/assets/meshes/die.obj"
+mass = 1.0
+position = [0.0, 0.5, 0.0]
+velocity = [1.0, 0.0, 0.5]
+angular_velocity = [0.0, 1.0, 0.0]
+)",
+                            "bench.toml");
+  run(state, World(make_world_def(scene)));
+  state.SetLabel(state.range(0) == 0 ? "box sliding, mu = 0.5" : "die mesh spinning on a face");
 }
 
 // Torque-free tumble near the intermediate axis, no floor, no gravity.
@@ -83,7 +119,8 @@ void BM_DefaultSceneWholeRun(benchmark::State& state) {
 }
 
 BENCHMARK(BM_BoxRestingOnFloor)->DenseRange(0, 3);
-BENCHMARK(BM_BoxSlidingOnFloor)->DenseRange(0, 3);
+BENCHMARK(BM_BoxSlidingOnFloor)->ArgsProduct({{0, 1, 2, 3}, {0, 1}});
+BENCHMARK(BM_AwakeContact)->DenseRange(0, 1);
 BENCHMARK(BM_TorqueFreeTumble)->DenseRange(0, 3);
 BENCHMARK(BM_DefaultSceneWholeRun)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 

@@ -41,6 +41,9 @@ struct WorldDef {
   double angular_drag = 0.0;  ///< N·m·s, 0 = none
   std::optional<FloorDef> floor;
   std::vector<BodyDef> bodies;
+  /// Tests and benchmarks: solve every resting contact with the general LCP, the reference the
+  /// resting-face fast path is checked against.
+  bool general_contact_only = false;
 };
 
 /// Tolerances of the contact model, with their reasons. Physics has no preferred scale: every

@@ -1,5 +1,9 @@
 #include "dynamics.hpp"
 
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
 #include "lcp.hpp"
 
 namespace tumble {
@@ -73,10 +77,85 @@ void BodyDynamics::contact_forces(const BodyState& s, double* out) const {
   solve_contacts(s, kinematics(s), out);
 }
 
+bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
+  // Frictionless only: with no tangential force, the motion depends on the contact forces only
+  // through their resultant wrench — the force N along the normal n = +y at the centre of
+  // pressure p, i.e. F = N n and τ = p × N n = (Mx, 0, Mz) with Mx = −N p_z, Mz = N p_x — which
+  // is unique when >= 3 non-collinear points hold, whereas the point forces (what the LCP
+  // returns) are not. So instead of the 4-point LCP of a box on its face, a 3×3 solve.
+  const int n = resting_->count;
+  if (n < 3 || body_.is_particle() || forces_.general_contact_only) return false;
+  for (int i = 0; i < n; ++i)
+    if (resting_->sliding[i] && resting_->friction > 0.0) return false;
+  const auto idx = resting_->indices();
+  const double inv_m = body_.inverse_mass();
+  const Vec3 a_cm = k.F * inv_m;
+  const Vec3 alpha = k.Iinv * (k.tau - k.omega.cross(s.L));
+  const Mat3& G = k.Iinv;
+  // Normal acceleration of point i: b_i + J_i · (N, Mx, Mz), with
+  // J_i = (1/m, (G e_x × r_i)_y, (G e_z × r_i)_y) and (a × r)_y = a_z r_x − a_x r_z.
+  Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
+  Vec3 Jtb = Vec3::Zero();
+  double px[ContactSet::kMaxPoints], pz[ContactSet::kMaxPoints];
+  for (int i = 0; i < n; ++i) {
+    const Vec3 r = k.R * body_.vertices()[idx[i]];
+    px[i] = r.x();
+    pz[i] = r.z();
+    const double b = a_cm.y() + alpha.cross(r).y() + k.omega.cross(k.omega.cross(r)).y();
+    const Vec3 J(inv_m, G(2, 0) * r.x() - G(0, 0) * r.z(), G(2, 2) * r.x() - G(0, 2) * r.z());
+    JtJ += J * J.transpose();
+    Jtb += J * b;
+  }
+  // Least squares: the points are coplanar (they all touch the plane), so the system is
+  // consistent and this is its exact solution; collinear points make JtJ singular: not a face.
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(JtJ);
+  if (ldlt.info() != Eigen::Success ||
+      ldlt.vectorD().minCoeff() <= 1e-12 * JtJ.diagonal().maxCoeff())
+    return false;
+  const Vec3 w = ldlt.solve(-Jtb);
+  const double N = w(0);
+  if (!(N > 0.0)) return false;  // the floor cannot pull: the body leaves it (the LCP decides)
+  // Centre of pressure (relative to the centre of mass, in the floor plane) strictly inside the
+  // points' convex hull, by a margin of 1e-9 of their extent: then non-negative point forces
+  // realise the wrench and every point's acceleration is zero — the LCP's solution. On or
+  // outside an edge the body tips: the general LCP decides which points stay.
+  const double cx = w(2) / N, cz = -w(1) / N;
+  int order[ContactSet::kMaxPoints];
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::sort(order, order + n,
+            [&](int a, int b) { return px[a] < px[b] || (px[a] == px[b] && pz[a] < pz[b]); });
+  auto cross = [&](int o, int a, int b) {
+    return (px[a] - px[o]) * (pz[b] - pz[o]) - (pz[a] - pz[o]) * (px[b] - px[o]);
+  };
+  int hull[2 * ContactSet::kMaxPoints];
+  int h = 0;
+  for (int i = 0; i < n; ++i) {
+    while (h >= 2 && cross(hull[h - 2], hull[h - 1], order[i]) <= 0.0) --h;
+    hull[h++] = order[i];
+  }
+  for (int i = n - 2, t = h + 1; i >= 0; --i) {
+    while (h >= t && cross(hull[h - 2], hull[h - 1], order[i]) <= 0.0) --h;
+    hull[h++] = order[i];
+  }
+  if (h < 4) return false;  // fewer than 3 hull corners
+  double extent = 0.0;
+  for (int i = 0; i < n; ++i) extent = std::max({extent, std::abs(px[i]), std::abs(pz[i])});
+  for (int i = 0; i + 1 < h; ++i) {
+    const int a = hull[i], b = hull[i + 1];
+    const double edge_cross = (px[b] - px[a]) * (cz - pz[a]) - (pz[b] - pz[a]) * (cx - px[a]);
+    const double edge = std::hypot(px[b] - px[a], pz[b] - pz[a]);
+    if (edge_cross <= 1e-9 * extent * edge) return false;
+  }
+  k.F.y() += N;
+  k.tau.x() += w(1);
+  k.tau.z() += w(2);
+  return true;
+}
+
 Rate BodyDynamics::operator()(const BodyState& s) const {
   if (evaluations_) ++*evaluations_;
   Kinematics k = kinematics(s);
-  if (resting_ && resting_->count > 0) {
+  if (resting_ && resting_->count > 0 && !add_face_wrench(s, k)) {
     double f[8];
     solve_contacts(s, k, f);
     const auto idx = resting_->indices();

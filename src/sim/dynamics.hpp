@@ -13,6 +13,9 @@ struct ForceModel {
   Vec3 gravity{0.0, -9.81, 0.0};
   double linear_drag = 0.0;   // N·s/m, 0 = not computed
   double angular_drag = 0.0;  // N·m·s, 0 = not computed
+  /// Solve every resting contact with the general LCP (the reference the fast face path is
+  /// tested against), never with the resting-face wrench.
+  bool general_contact_only = false;
 };
 
 /// dY/dt of one body; only the live orientation form (q or R) is filled.
@@ -78,6 +81,10 @@ class BodyDynamics {
   };
   Kinematics kinematics(const BodyState& s) const;
   void solve_contacts(const BodyState& s, const Kinematics& k, double* f) const;
+  // The resting-face fast path: when >= 3 frictionless held points keep their normal
+  // accelerations at zero with a contact wrench whose centre of pressure lies inside their
+  // support polygon, adds that wrench to k and returns true; else leaves k and returns false.
+  bool add_face_wrench(const BodyState& s, Kinematics& k) const;
   Vec3 friction_direction(const Kinematics& k, const Vec3& r, int point) const;
 
   const RigidBody& body_;

@@ -224,7 +224,8 @@ void World::record_impact(std::size_t i, double t, double speed) {
 void World::advance_body(std::size_t index, double h) {
   RigidBody& b = bodies_[index];
   if (b.at_rest) return;  // static equilibrium: the exact motion over any step is none
-  const ForceModel forces{def_.gravity, def_.linear_drag, def_.angular_drag};
+  const ForceModel forces{def_.gravity, def_.linear_drag, def_.angular_drag,
+                          def_.general_contact_only};
   if (!def_.floor) {
     StepInfo info;
     b.state = integrate_body(index, BodyDynamics(b, def_.rotation, forces, nullptr, &evaluations_),
