@@ -45,7 +45,8 @@ const std::filesystem::path& model_folder() {
     const TriangleMesh m = torus();
     std::FILE* obj = std::fopen((dir / "torus.obj").c_str(), "w");
     for (const Vec3& v : m.vertices) std::fprintf(obj, "v %.9g %.9g %.9g\n", v.x(), v.y(), v.z());
-    for (const auto& t : m.triangles) std::fprintf(obj, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    for (const auto& t : m.triangles)
+      std::fprintf(obj, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
     std::fclose(obj);
     std::ofstream stl(dir / "torus.stl", std::ios::binary);
     char header[80] = "tumble bench_mesh torus";
@@ -82,8 +83,12 @@ void load(benchmark::State& state, const char* name) {
   state.counters["hull_vertices"] = static_cast<double>(hull);
 }
 
-void BM_LoadMeshBodyObj(benchmark::State& state) { load(state, "torus.obj"); }
-void BM_LoadMeshBodyBinaryStl(benchmark::State& state) { load(state, "torus.stl"); }
+void BM_LoadMeshBodyObj(benchmark::State& state) {
+  load(state, "torus.obj");
+}
+void BM_LoadMeshBodyBinaryStl(benchmark::State& state) {
+  load(state, "torus.stl");
+}
 
 void BM_MassProperties(benchmark::State& state) {
   const TriangleMesh m = torus();

@@ -19,8 +19,8 @@ namespace {
 // other files finds none.
 const std::filesystem::path& input_folder() {
   static const std::filesystem::path folder = [] {
-    auto dir = std::filesystem::temp_directory_path() /
-               ("tumble_fuzz_mesh_" + std::to_string(::getpid()));
+    auto dir =
+        std::filesystem::temp_directory_path() / ("tumble_fuzz_mesh_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     return dir;
   }();

@@ -1,7 +1,8 @@
 #pragma once
 /// Closed triangle meshes as rigid bodies: loading through assimp, welding, topology checks and
-/// repairs, exact mass properties (divergence theorem), the convex hull (Qhull) and contact-point
-/// reduction. Plain data in, plain data out: this layer knows nothing of scenes, worlds or GL.
+/// repairs, exact mass properties (divergence theorem) and the convex hull (Qhull); reducing a
+/// hull face on the floor to its support polygon is the physics' (src/sim/floor_contact.cpp).
+/// Plain data in, plain data out: this layer knows nothing of scenes, worlds or GL.
 /// Everything is in the model file's own frame (after `scale`, in metres); nothing is moved to the
 /// centre of mass or rotated to principal axes, so "identity" always means "as the file has it".
 /// Reference for users: docs/meshes.md.
@@ -41,7 +42,7 @@ struct TriangleMesh {
 /// Mass properties of the solid at unit density (1 kg/m^3): multiply the volume and the inertia
 /// by the density to get the mass and the inertia in kg, kg·m².
 struct MassProperties {
-  double volume = 0;       ///< m^3, > 0 for a valid solid
+  double volume = 0;                   ///< m^3, > 0 for a valid solid
   Vec3 center_of_mass = Vec3::Zero();  ///< file frame, m
   Mat3 inertia_com = Mat3::Zero();     ///< about the centre of mass, file axes, unit density
   /// Principal moments, unit density: principal_moments[i] is the moment about column i of
@@ -65,11 +66,11 @@ PrincipalFrame principal_frame(const Mat3& inertia);
 
 /// A loaded model, checked and ready to become a body.
 struct MeshBody {
-  TriangleMesh mesh;                ///< what is rendered (after any repair)
-  MassProperties mass;              ///< of the solid that is simulated (the hull when repair = hull)
-  std::vector<Vec3> hull_vertices;  ///< convex hull vertices, file frame, sorted by (x, y, z)
-  std::size_t hull_faces = 0;       ///< faces of the hull, coplanar triangles merged into one
-  std::string repair_note;          ///< what a repair changed; "" when nothing was changed
+  TriangleMesh mesh;    ///< what is rendered (after any repair)
+  MassProperties mass;  ///< of the solid that is simulated (the hull when repair = hull)
+  std::vector<Vec3> hull_vertices;       ///< convex hull vertices, file frame, sorted by (x, y, z)
+  std::size_t hull_faces = 0;            ///< faces of the hull, coplanar triangles merged into one
+  std::string repair_note;               ///< what a repair changed; "" when nothing was changed
   std::size_t source_triangles = 0;      ///< triangles in the file, after triangulation
   std::size_t welded_vertices = 0;       ///< distinct vertices after welding
   std::size_t degenerate_triangles = 0;  ///< zero-area triangles dropped (see docs/meshes.md)
@@ -93,8 +94,8 @@ MassProperties mass_properties(const TriangleMesh& mesh);
 
 /// The convex hull as a closed, outward-wound triangle mesh.
 struct ConvexHull {
-  TriangleMesh mesh;          ///< vertices sorted by (x, y, z); faces fan-triangulated
-  std::size_t faces = 0;      ///< hull faces before triangulation (a cube: 6)
+  TriangleMesh mesh;      ///< vertices sorted by (x, y, z); faces fan-triangulated
+  std::size_t faces = 0;  ///< hull faces before triangulation (a cube: 6)
 };
 
 /// Convex hull of a point set (Qhull, libqhull_r, with its default facet merging). Throws
@@ -103,15 +104,5 @@ struct ConvexHull {
 ConvexHull convex_hull(const std::vector<Vec3>& points);
 /// The vertices of convex_hull(points), sorted by (x, y, z).
 std::vector<Vec3> convex_hull_vertices(const std::vector<Vec3>& points);
-
-/// Reduces contact candidates lying (nearly) in one plane with normal `normal` to at most
-/// `max_points` of them that keep their support polygon: the corners of their 2-D convex hull
-/// (points on its edges or inside it are dropped), most extreme first: the first is the corner
-/// farthest from the corners' centroid, the second the corner farthest from it, and each next
-/// one the corner farthest outside the polygon of those already chosen. When the hull has more
-/// than `max_points` corners, the first `max_points` of that order are returned. Returns
-/// indices into `points`; deterministic (ties go to the lower index).
-std::vector<int> reduce_support_points(const std::vector<Vec3>& points, const Vec3& normal,
-                                       int max_points);
 
 }  // namespace tumble

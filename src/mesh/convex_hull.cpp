@@ -97,11 +97,13 @@ ConvexHull convex_hull(const std::vector<Vec3>& points) {
   QhullRun run(messages.file());
   qhT* qh = run.get();
   char command[] = "qhull";  // defaults: facets merged within Qhull's round-off estimate
-  const int status = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(),
-                                  False, command, nullptr, messages.file());
+  const int status = qh_new_qhull(qh, 3, static_cast<int>(points.size()), coordinates.data(), False,
+                                  command, nullptr, messages.file());
   if (status == qh_ERRsingular)
-    throw Error(ErrorKind::BadInput, "flat: the points lie in one plane or on one line, to "
-                                     "Qhull's precision (" + messages.first_line() + ")");
+    throw Error(ErrorKind::BadInput,
+                "flat: the points lie in one plane or on one line, to "
+                "Qhull's precision (" +
+                    messages.first_line() + ")");
   if (status != 0)
     throw Error(ErrorKind::BadInput, "the convex hull failed: " + messages.first_line());
 

@@ -17,10 +17,22 @@ constexpr std::size_t kMaxPlyHeader = 64 * 1024;
 // Bytes of a PLY scalar type (Bourke's names and the sized aliases), 0 when unknown.
 std::size_t ply_type_size(std::string_view type) {
   static constexpr std::array<std::pair<std::string_view, std::size_t>, 16> kTypes = {{
-      {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1},
-      {"short", 2}, {"ushort", 2}, {"int16", 2}, {"uint16", 2},
-      {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8},
+      {"char", 1},
+      {"uchar", 1},
+      {"int8", 1},
+      {"uint8", 1},
+      {"short", 2},
+      {"ushort", 2},
+      {"int16", 2},
+      {"uint16", 2},
+      {"int", 4},
+      {"uint", 4},
+      {"int32", 4},
+      {"uint32", 4},
+      {"float", 4},
+      {"float32", 4},
+      {"double", 8},
+      {"float64", 8},
   }};
   for (const auto& [name, size] : kTypes)
     if (name == type) return size;
@@ -109,8 +121,8 @@ std::string guard_ply(const std::filesystem::path& file) {
     needed += e.count * per;
   }
   if (needed > body + 1)
-    return "not a valid PLY file: its header declares more data than its " +
-           std::to_string(body) + " bytes hold";
+    return "not a valid PLY file: its header declares more data than its " + std::to_string(body) +
+           " bytes hold";
   return "";
 }
 

@@ -109,19 +109,17 @@ std::vector<std::string> edge_problems(const EdgeCensus& census, const Reporter&
   std::vector<std::string> problems;
   if (census.open > 0)
     problems.push_back("not closed: " + count_of(census.open, "open edge", "open edges") +
-                       " (used by one triangle only), e.g. " +
-                       report.edges(census.open_examples));
+                       " (used by one triangle only), e.g. " + report.edges(census.open_examples));
   if (census.non_manifold > 0)
-    problems.push_back("non-manifold: " +
-                       count_of(census.non_manifold, "edge is", "edges are") +
+    problems.push_back("non-manifold: " + count_of(census.non_manifold, "edge is", "edges are") +
                        " shared by more than two triangles, e.g. " +
                        report.edges(census.non_manifold_examples));
   if (winding && census.misoriented > 0)
-    problems.push_back("inconsistent winding: " +
-                       count_of(census.misoriented, "edge is", "edges are") +
-                       " used twice in the same direction (neighbouring triangles face opposite "
-                       "ways), e.g. " +
-                       report.edges(census.misoriented_examples));
+    problems.push_back(
+        "inconsistent winding: " + count_of(census.misoriented, "edge is", "edges are") +
+        " used twice in the same direction (neighbouring triangles face opposite "
+        "ways), e.g. " +
+        report.edges(census.misoriented_examples));
   return problems;
 }
 
@@ -145,7 +143,14 @@ MeshBody hull_body(const Welded& w, const Reporter& report, std::size_t source_t
       compact_mesh(w.vertices, w.triangles, [](std::size_t) { return true; });
   const ConvexHull hull = hull_of(report, surface.vertices, "repair = \"hull\": ");
   MeshBody body;
-  body.mesh = hull.mesh;
+  // Drawn without fan triangles of zero area (a hull face's vertices nearly in line).
+  body.mesh = compact_mesh(hull.mesh.vertices, hull.mesh.triangles, [&](std::size_t f) {
+    const auto& t = hull.mesh.triangles[f];
+    const Vec3 &a = hull.mesh.vertices[t[0]], &b = hull.mesh.vertices[t[1]],
+               &c = hull.mesh.vertices[t[2]];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    return (b - a).cross(c - a).norm() > w.tolerance * longest;
+  });
   body.mass = mass_properties(hull.mesh);
   check_solid(report.file(), measure_surface(hull.mesh), body.mass, body.mass.volume,
               "its convex hull");
@@ -158,11 +163,13 @@ MeshBody hull_body(const Welded& w, const Reporter& report, std::size_t source_t
   // What was wrong with the source, in short, for run.json.
   const EdgeCensus census = census_edges(w.triangles);
   std::vector<std::string> defects;
-  if (census.open > 0) defects.push_back("not closed (" + count_of(census.open, "open edge", "open edges") + ")");
+  if (census.open > 0)
+    defects.push_back("not closed (" + count_of(census.open, "open edge", "open edges") + ")");
   if (census.non_manifold > 0)
     defects.push_back("non-manifold (" + count_of(census.non_manifold, "edge", "edges") + ")");
   if (census.misoriented > 0)
-    defects.push_back("inconsistently wound (" + count_of(census.misoriented, "edge", "edges") + ")");
+    defects.push_back("inconsistently wound (" + count_of(census.misoriented, "edge", "edges") +
+                      ")");
   if (!defects.empty()) body.repair_note += ", which were " + join(defects, ", ");
   return body;
 }
@@ -224,8 +231,9 @@ MeshBody load_mesh_body(const fs::path& file, const MeshLoadOptions& options) {
   if (census.misoriented > 0) {
     const std::vector<bool> flips = consistent_flips(fixed.triangles);
     if (flips.empty())
-      report.fail("not orientable: no winding makes every edge run once each way (a surface "
-                  "like a Klein bottle bounds no solid)");
+      report.fail(
+          "not orientable: no winding makes every edge run once each way (a surface "
+          "like a Klein bottle bounds no solid)");
     std::size_t flipped = 0;
     for (std::size_t f = 0; f < flips.size(); ++f)
       if (flips[f]) {
@@ -266,7 +274,8 @@ MeshBody load_mesh_body(const fs::path& file, const MeshLoadOptions& options) {
   if (wrong > 0) {
     if (options.repair == MeshRepair::None) {
       if (shells.size() == 1)
-        report.fail("inside-out: its " + count_of(wrong_triangles, "triangle faces", "triangles face") +
+        report.fail("inside-out: its " +
+                    count_of(wrong_triangles, "triangle faces", "triangles face") +
                     " inward (signed volume " + format_number(first_wrong->signed_volume) +
                     " m^3); repair = \"orient\" flips them");
       report.fail("inside-out: " + std::to_string(wrong) + " of " + std::to_string(shells.size()) +
@@ -280,9 +289,9 @@ MeshBody load_mesh_body(const fs::path& file, const MeshLoadOptions& options) {
         for (std::uint32_t f : shell.triangles)
           std::swap(fixed.triangles[f][1], fixed.triangles[f][2]);
     notes.push_back("flipped " + count_of(wrong_triangles, "triangle", "triangles") +
-                    (shells.size() == 1 ? std::string(" (the mesh was inside-out)")
-                                        : " in " + count_of(wrong, "inside-out shell",
-                                                            "inside-out shells")));
+                    (shells.size() == 1
+                         ? std::string(" (the mesh was inside-out)")
+                         : " in " + count_of(wrong, "inside-out shell", "inside-out shells")));
     closed = compact_mesh(fixed.vertices, fixed.triangles, all);
   }
 

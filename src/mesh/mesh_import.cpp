@@ -23,7 +23,7 @@ namespace tumble {
 const std::vector<std::string>& mesh_file_extensions() {
   // The formats users bring (and assimp reads well), not every format assimp knows: each
   // importer is attack surface, and an unknown extension would make assimp try all of them.
-  static const std::vector<std::string> extensions = {"obj", "stl",  "ply", "off", "gltf",
+  static const std::vector<std::string> extensions = {"obj", "stl", "ply", "off", "gltf",
                                                       "glb", "fbx", "dae", "3ds"};
   return extensions;
 }

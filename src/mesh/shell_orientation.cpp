@@ -82,7 +82,8 @@ std::vector<Shell> orient_shells(const std::vector<Vec3>& vertices,
             ++outside;
             continue;
           }
-          const double w = std::abs(winding_number(vertices, triangles, shells[o].triangles, probe));
+          const double w =
+              std::abs(winding_number(vertices, triangles, shells[o].triangles, probe));
           if (w > 0.75)
             ++inside;
           else if (w < 0.25)

@@ -16,8 +16,8 @@ struct Shell {
   std::vector<std::uint32_t> triangles;  ///< indices into the mesh's triangles
   double signed_volume = 0;              ///< m^3; > 0 when it faces outward
   std::size_t depth = 0;                 ///< how many other shells enclose it
-  bool inside_out = false;  ///< faces the wrong way for its depth (outward at odd depth, ...)
-  bool crosses = false;     ///< partly inside, partly outside another shell: they intersect
+  bool inside_out = false;      ///< faces the wrong way for its depth (outward at odd depth, ...)
+  bool crosses = false;         ///< partly inside, partly outside another shell: they intersect
   Vec3 example = Vec3::Zero();  ///< a vertex of it, for messages
 };
 

@@ -32,9 +32,10 @@ void check_solid(const std::filesystem::path& file, const SurfaceMeasures& surfa
   // Round-off in Σ area·normal grows like sqrt(n) ulps of the area; 1e-9 is far above it and
   // far below any real gap.
   if (surface.area_vector.norm() > 1e-9 * surface.area)
-    throw_mesh_error(file, "not closed: " + name + " does not enclose a volume (its area-weighted "
-                               "normals sum to " + format_point(surface.area_vector) +
-                               " m^2, not 0)");
+    throw_mesh_error(file, "not closed: " + name +
+                               " does not enclose a volume (its area-weighted "
+                               "normals sum to " +
+                               format_point(surface.area_vector) + " m^2, not 0)");
   if (!(mass.volume > surface.zero_volume()) || !mass.inertia_com.allFinite())
     throw_mesh_error(file, "zero volume: " + name + " encloses " + format_number(mass.volume) +
                                " m^3 for " + format_number(surface.area) +
@@ -50,8 +51,8 @@ void check_solid(const std::filesystem::path& file, const SurfaceMeasures& surfa
   const double trace = m.sum();
   const double slack = 1e-9 * std::abs(trace);
   const bool positive = m.minCoeff() > 1e-12 * std::abs(trace);
-  const bool triangle = m[0] + m[1] >= m[2] - slack && m[1] + m[2] >= m[0] - slack &&
-                        m[2] + m[0] >= m[1] - slack;
+  const bool triangle =
+      m[0] + m[1] >= m[2] - slack && m[1] + m[2] >= m[0] - slack && m[2] + m[0] >= m[1] - slack;
   if (!positive || !triangle)
     throw_mesh_error(file, "self-intersecting: the inertia of " + name +
                                " is not that of a solid (principal moments " + format_point(m) +

@@ -12,9 +12,9 @@
 namespace tumble::mesh_detail {
 
 struct SurfaceMeasures {
-  double area = 0;                     ///< m^2
-  Vec3 area_vector = Vec3::Zero();     ///< Σ area · outward normal, m^2 (0 for a closed surface)
-  double diagonal = 0;                 ///< of the bounding box, m
+  double area = 0;                  ///< m^2
+  Vec3 area_vector = Vec3::Zero();  ///< Σ area · outward normal, m^2 (0 for a closed surface)
+  double diagonal = 0;              ///< of the bounding box, m
   /// Volumes at or below this are zero to round-off: 1e-9 · area · diagonal.
   double zero_volume() const { return 1e-9 * area * diagonal; }
 };

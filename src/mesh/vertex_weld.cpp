@@ -68,9 +68,8 @@ Weld weld_vertices(const std::vector<Vec3>& positions) {
     cells.reserve(distinct.size());
     for (std::uint32_t v : distinct) {
       const Vec3& p = positions[v];
-      cells.push_back({{cell_coordinate(p.x(), 0), cell_coordinate(p.y(), 1),
-                        cell_coordinate(p.z(), 2)},
-                       v});
+      cells.push_back(
+          {{cell_coordinate(p.x(), 0), cell_coordinate(p.y(), 1), cell_coordinate(p.z(), 2)}, v});
     }
     std::sort(cells.begin(), cells.end());
   }

@@ -62,6 +62,16 @@ TEST(MeshLoading, MirroringNodeTransformKeepsTheWindingOutward) {
   EXPECT_GT(mass_properties(body.mesh).volume, 0.0);
 }
 
+TEST(MeshLoading, ColladaUnitAndUpAxisAreApplied) {
+  // A 100 cm cube declared in centimetres: 1 m^3 (to float32, in which assimp scales).
+  const MeshBody cube = load(kData / "cube_centimetres_z_up.dae");
+  EXPECT_NEAR(cube.mass.volume, 1.0, 1e-6);
+  // Z up becomes y up: (x, y, z) -> (x, z, -y), a rotation, so the winding stays outward.
+  const MeshBody l = load(kData / "lshape_z_up.dae");
+  EXPECT_NEAR(l.mass.volume, 0.375, 1e-12);
+  EXPECT_LT((l.mass.center_of_mass - Vec3(5.0 / 12.0, 0.25, -5.0 / 12.0)).norm(), 1e-12);
+}
+
 TEST(MeshLoading, CavityFacingInwardIsSubtracted) {
   const MeshBody body = load(kData / "hollow_cube.obj");
   EXPECT_NEAR(body.mass.volume, 7.0, 1e-12);
@@ -101,9 +111,12 @@ TEST(MeshLoading, EveryAssetLoadsCleanAsAClosedSolid) {
 }
 
 TEST(MeshLoading, SameModelInTwoFormatsIsOneBody) {
-  for (const auto& [a, b] : std::vector<std::pair<const char*, const char*>>{
-           {"tetrahedron.obj", "tetrahedron.off"}, {"icosphere.obj", "icosphere.glb"},
-           {"lshape.obj", "lshape.stl"}, {"plate.obj", "plate.ply"}, {"die.obj", "die.gltf"}}) {
+  for (const auto& [a, b] :
+       std::vector<std::pair<const char*, const char*>>{{"tetrahedron.obj", "tetrahedron.off"},
+                                                        {"icosphere.obj", "icosphere.glb"},
+                                                        {"lshape.obj", "lshape.stl"},
+                                                        {"plate.obj", "plate.ply"},
+                                                        {"die.obj", "die.gltf"}}) {
     SCOPED_TRACE(a);
     // OBJ text and binary float32 may round the same decimal differently by an ulp.
     expect_same_body(load(kAssets / a), load(kAssets / b), 1e-6);

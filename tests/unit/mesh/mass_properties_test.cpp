@@ -65,8 +65,8 @@ TEST(MassProperties, TetrahedronMatchesTheCovarianceClosedForm) {
   EXPECT_LT((m.center_of_mass - centroid).norm(), kExact);
   EXPECT_LT(relative_difference(m.inertia_com, inertia), kExact);
   // The principal frame diagonalises the tensor.
-  const Mat3 back = m.principal_axes * m.principal_moments.asDiagonal() *
-                    m.principal_axes.transpose();
+  const Mat3 back =
+      m.principal_axes * m.principal_moments.asDiagonal() * m.principal_axes.transpose();
   EXPECT_LT(relative_difference(back, inertia), 1e-12);
   EXPECT_NEAR(m.principal_axes.determinant(), 1.0, 1e-12);
 }
@@ -87,8 +87,8 @@ TEST(MassProperties, RegularTetrahedronAssetIsIsotropic) {
 TriangleMesh icosphere(int subdivisions, double radius) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   TriangleMesh m;
-  m.vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  m.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   for (Vec3& v : m.vertices) v.normalize();
   m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                  {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
@@ -169,8 +169,7 @@ TEST(MassProperties, ScalePerAxisScalesVolumeAndInertia) {
   EXPECT_NEAR(body.mass.volume, 3.0, 3.0 * kExact);
   EXPECT_LT(relative_difference(body.mass.inertia_com, box_inertia_unit_density(scale)), kExact);
   EXPECT_LT((body.mass.principal_axes - Mat3::Identity()).norm(), 1e-12);
-  for (const Vec3& v : body.hull_vertices)
-    EXPECT_LT((v.cwiseAbs() - 0.5 * scale).norm(), kExact);
+  for (const Vec3& v : body.hull_vertices) EXPECT_LT((v.cwiseAbs() - 0.5 * scale).norm(), kExact);
 }
 
 TEST(MassProperties, InsideOutMeshHasNegativeVolume) {

@@ -50,21 +50,21 @@ TEST(MeshErrors, FileTooLarge) {
   MeshLoadOptions options;
   options.max_file_bytes = 100;
   EXPECT_CONTAINS(load_error(kAssets / "cube.obj", options),
-              "cube.obj: file too large: 482 bytes, above the limit of 100");
+                  "cube.obj: file too large: 482 bytes, above the limit of 100");
 }
 
 TEST(MeshErrors, TooManyTriangles) {
   MeshLoadOptions options;
   options.max_triangles = 11;
   EXPECT_CONTAINS(load_error(kAssets / "cube.obj", options),
-              "cube.obj: too many triangles: 12, above the limit of 11");
+                  "cube.obj: too many triangles: 12, above the limit of 11");
 }
 
 TEST(MeshErrors, ScaleMustBePositive) {
   MeshLoadOptions options;
   options.scale = Vec3(1.0, 0.0, 1.0);
   EXPECT_CONTAINS(load_error(kAssets / "cube.obj", options),
-              "scale must be finite and positive on every axis, got (1, 0, 1)");
+                  "scale must be finite and positive on every axis, got (1, 0, 1)");
 }
 
 TEST(MeshErrors, OpenBoxNamesItsOpenEdges) {
@@ -81,59 +81,58 @@ TEST(MeshErrors, ExampleCoordinatesAreInFileUnits) {
   MeshLoadOptions options;
   options.scale = Vec3::Constant(0.001);  // a model in millimetres
   EXPECT_CONTAINS(load_error(kData / "open_box.obj", options),
-              "e.g. (-0.5, 0.5, -0.5)\u2013(-0.5, 0.5, 0.5)");
+                  "e.g. (-0.5, 0.5, -0.5)\u2013(-0.5, 0.5, 0.5)");
 }
 
 TEST(MeshErrors, NonManifoldEdge) {
   EXPECT_CONTAINS(load_error(kData / "non_manifold.obj"),
-              "non_manifold.obj: non-manifold: 1 edge is shared by more than two "
-                        "triangles, e.g. (1, 1, 0)\u2013(1, 1, 1)");
+                  "non_manifold.obj: non-manifold: 1 edge is shared by more than two "
+                  "triangles, e.g. (1, 1, 0)\u2013(1, 1, 1)");
   // Orient cannot fix it; hull can.
   EXPECT_CONTAINS(load_error(kData / "non_manifold.obj", with_repair(MeshRepair::Orient)),
-              "non-manifold");
+                  "non-manifold");
   EXPECT_EQ(load_error(kData / "non_manifold.obj", with_repair(MeshRepair::Hull)), "");
 }
 
 TEST(MeshErrors, InconsistentWinding) {
   EXPECT_CONTAINS(load_error(kData / "inconsistent_winding.obj"),
-              "inconsistent_winding.obj: inconsistent winding: 3 edges are used twice "
-                        "in the same direction (neighbouring triangles face opposite ways), e.g. ");
+                  "inconsistent_winding.obj: inconsistent winding: 3 edges are used twice "
+                  "in the same direction (neighbouring triangles face opposite ways), e.g. ");
   EXPECT_CONTAINS(load_error(kData / "inconsistent_winding.obj"),
-              "(repair = \"orient\" makes the winding consistent)");
+                  "(repair = \"orient\" makes the winding consistent)");
 }
 
 TEST(MeshErrors, InsideOutWithoutRepair) {
   EXPECT_CONTAINS(load_error(kData / "inside_out_cube.obj"),
-              "inside_out_cube.obj: inside-out: its 12 triangles face inward (signed "
-                        "volume -1 m^3); repair = \"orient\" flips them");
+                  "inside_out_cube.obj: inside-out: its 12 triangles face inward (signed "
+                  "volume -1 m^3); repair = \"orient\" flips them");
 }
 
 TEST(MeshErrors, CavityFacingOutward) {
   EXPECT_CONTAINS(load_error(kData / "hollow_cube_wrong.obj"),
-              "inside-out: 1 of 2 shells face the wrong way");
+                  "inside-out: 1 of 2 shells face the wrong way");
 }
 
 TEST(MeshErrors, FlatSurfaceHasZeroVolume) {
   EXPECT_CONTAINS(load_error(kData / "flat.obj"),
-              "flat.obj: zero volume: the surface encloses no volume");
+                  "flat.obj: zero volume: the surface encloses no volume");
   EXPECT_CONTAINS(load_error(kData / "flat.obj", with_repair(MeshRepair::Hull)),
-              "flat.obj: repair = \"hull\": flat: the points lie in one plane");
+                  "flat.obj: repair = \"hull\": flat: the points lie in one plane");
 }
 
 TEST(MeshErrors, DegenerateTriangles) {
   EXPECT_CONTAINS(load_error(kData / "degenerate.obj"),
-              "degenerate.obj: degenerate: 4 of 4 triangles have zero area");
+                  "degenerate.obj: degenerate: 4 of 4 triangles have zero area");
 }
 
 TEST(MeshErrors, OverlappingShellsIntersect) {
   EXPECT_CONTAINS(load_error(kData / "overlapping_cubes.obj"),
-              "overlapping_cubes.obj: self-intersecting: the shell of 12 triangles");
+                  "overlapping_cubes.obj: self-intersecting: the shell of 12 triangles");
 }
 
 TEST(MeshErrors, ReferencedFileOutsideTheModelsFolderIsRefused) {
   // escape.gltf's buffer is "../cube_buffer.bin": assimp may read only the model's folder.
-  EXPECT_CONTAINS(load_error(kData / "confined" / "escape.gltf"),
-              "outside the model's folder");
+  EXPECT_CONTAINS(load_error(kData / "confined" / "escape.gltf"), "outside the model's folder");
 }
 
 TEST(MeshErrors, NotOrientableSurface) {
@@ -163,8 +162,7 @@ TEST(MeshErrors, NotOrientableSurface) {
   const auto dir = test::fresh_dir("MeshErrors", "NotOrientableSurface");
   std::ofstream(dir / "klein.obj") << obj;
   EXPECT_CONTAINS(load_error(dir / "klein.obj"), "inconsistent winding");
-  EXPECT_CONTAINS(load_error(dir / "klein.obj", with_repair(MeshRepair::Orient)),
-              "not orientable");
+  EXPECT_CONTAINS(load_error(dir / "klein.obj", with_repair(MeshRepair::Orient)), "not orientable");
 }
 
 TEST(MeshErrors, ADirectoryIsNoMesh) {

@@ -12,10 +12,10 @@
 #include "tumble/mesh.hpp"
 
 /// Expects `text` to contain `part`, showing the whole text when it does not.
-#define EXPECT_CONTAINS(text, part)                                                      \
-  do {                                                                                   \
-    const std::string tumble_text_ = (text);                                             \
-    EXPECT_NE(tumble_text_.find(part), std::string::npos)                                \
+#define EXPECT_CONTAINS(text, part)                                                          \
+  do {                                                                                       \
+    const std::string tumble_text_ = (text);                                                 \
+    EXPECT_NE(tumble_text_.find(part), std::string::npos)                                    \
         << "expected to contain: " << (part) << "\n                  got: " << tumble_text_; \
   } while (false)
 
@@ -62,8 +62,8 @@ inline Mat3 shifted_inertia(const Mat3& inertia_com, double volume, const Vec3& 
 inline TriangleMesh box_mesh(const Vec3& size, const Vec3& centre = Vec3::Zero()) {
   TriangleMesh m;
   for (int i = 0; i < 8; ++i)
-    m.vertices.push_back(centre + 0.5 * size.cwiseProduct(Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1,
-                                                               i & 4 ? 1 : -1)));
+    m.vertices.push_back(
+        centre + 0.5 * size.cwiseProduct(Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1)));
   // Corners: bit 0 = +x, bit 1 = +y, bit 2 = +z. Each face counter-clockwise from outside.
   m.triangles = {{0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5},   // -x, +x
                  {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},   // -y, +y
