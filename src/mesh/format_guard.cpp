@@ -1,8 +1,10 @@
 #include "format_guard.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -126,10 +128,55 @@ std::string guard_ply(const std::filesystem::path& file) {
   return "";
 }
 
+// assimp 5.2.5's COLLADA reader dereferences null on an array or accessor element without its
+// `count` attribute (found by fuzz_mesh in CI); the COLLADA 1.4 schema requires it on every
+// <float_array>, <int_array>, <bool_array>, <Name_array>, <IDREF_array> and <accessor>.
+std::string guard_collada(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const std::string_view tag :
+       {"<float_array", "<int_array", "<bool_array", "<Name_array", "<IDREF_array", "<accessor"}) {
+    for (std::size_t at = text.find(tag); at != std::string::npos; at = text.find(tag, at + 1)) {
+      const std::size_t after = at + tag.size();
+      if (after < text.size() && text[after] != ' ' && text[after] != '\t' && text[after] != '\n' &&
+          text[after] != '\r' && text[after] != '>' && text[after] != '/')
+        continue;  // a longer element name
+      const std::size_t end = text.find('>', after);
+      const std::string_view attributes = std::string_view(text).substr(
+          after, end == std::string::npos ? text.size() - after : end - after);
+      // ` count="<digits>"` as a whole attribute (not the tail of another name).
+      bool counted = false;
+      for (std::size_t c = attributes.find("count"); c != std::string_view::npos;
+           c = attributes.find("count", c + 1)) {
+        const bool starts = c > 0 && (attributes[c - 1] == ' ' || attributes[c - 1] == '\t' ||
+                                      attributes[c - 1] == '\n' || attributes[c - 1] == '\r');
+        std::size_t q = c + 5;
+        while (q < attributes.size() && attributes[q] == ' ') ++q;
+        if (!starts || q >= attributes.size() || attributes[q] != '=') continue;
+        ++q;
+        while (q < attributes.size() && attributes[q] == ' ') ++q;
+        if (q >= attributes.size() || (attributes[q] != '"' && attributes[q] != '\'')) continue;
+        const char quote = attributes[q++];
+        const std::size_t digits = q;
+        while (q < attributes.size() && attributes[q] >= '0' && attributes[q] <= '9') ++q;
+        if (q > digits && q < attributes.size() && attributes[q] == quote) counted = true;
+      }
+      if (!counted) {
+        const std::size_t line = 1 + static_cast<std::size_t>(std::count(
+                                         text.begin(), text.begin() + static_cast<long>(at), '\n'));
+        return "malformed COLLADA: the " + std::string(tag.substr(1)) + " element on line " +
+               std::to_string(line) + " has no count attribute (the COLLADA schema requires it)";
+      }
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string guard_format(const std::filesystem::path& file, const std::string& extension) {
   if (extension == "ply") return guard_ply(file);
+  if (extension == "dae") return guard_collada(file);
   return "";
 }
 
