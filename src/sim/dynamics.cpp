@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "lcp.hpp"
+#include "support_polygon.hpp"
 
 namespace tumble {
 
@@ -96,11 +97,12 @@ bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
   // J_i = (1/m, (G e_x × r_i)_y, (G e_z × r_i)_y) and (a × r)_y = a_z r_x − a_x r_z.
   Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
   Vec3 Jtb = Vec3::Zero();
-  double px[ContactSet::kMaxPoints], pz[ContactSet::kMaxPoints];
+  PlanePoint points[ContactSet::kMaxPoints], hull[2 * ContactSet::kMaxPoints + 1];
+  double extent = 0.0;
   for (int i = 0; i < n; ++i) {
     const Vec3 r = k.R * body_.vertices()[idx[i]];
-    px[i] = r.x();
-    pz[i] = r.z();
+    points[i] = {r.x(), r.z(), i};
+    extent = std::max({extent, std::abs(r.x()), std::abs(r.z())});
     const double b = a_cm.y() + alpha.cross(r).y() + k.omega.cross(k.omega.cross(r)).y();
     const Vec3 J(inv_m, G(2, 0) * r.x() - G(0, 0) * r.z(), G(2, 2) * r.x() - G(0, 2) * r.z());
     JtJ += J * J.transpose();
@@ -120,32 +122,7 @@ bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
   // realise the wrench and every point's acceleration is zero — the LCP's solution. On or
   // outside an edge the body tips: the general LCP decides which points stay.
   const double cx = w(2) / N, cz = -w(1) / N;
-  int order[ContactSet::kMaxPoints];
-  for (int i = 0; i < n; ++i) order[i] = i;
-  std::sort(order, order + n,
-            [&](int a, int b) { return px[a] < px[b] || (px[a] == px[b] && pz[a] < pz[b]); });
-  auto cross = [&](int o, int a, int b) {
-    return (px[a] - px[o]) * (pz[b] - pz[o]) - (pz[a] - pz[o]) * (px[b] - px[o]);
-  };
-  int hull[2 * ContactSet::kMaxPoints];
-  int h = 0;
-  for (int i = 0; i < n; ++i) {
-    while (h >= 2 && cross(hull[h - 2], hull[h - 1], order[i]) <= 0.0) --h;
-    hull[h++] = order[i];
-  }
-  for (int i = n - 2, t = h + 1; i >= 0; --i) {
-    while (h >= t && cross(hull[h - 2], hull[h - 1], order[i]) <= 0.0) --h;
-    hull[h++] = order[i];
-  }
-  if (h < 4) return false;  // fewer than 3 hull corners
-  double extent = 0.0;
-  for (int i = 0; i < n; ++i) extent = std::max({extent, std::abs(px[i]), std::abs(pz[i])});
-  for (int i = 0; i + 1 < h; ++i) {
-    const int a = hull[i], b = hull[i + 1];
-    const double edge_cross = (px[b] - px[a]) * (cz - pz[a]) - (pz[b] - pz[a]) * (cx - px[a]);
-    const double edge = std::hypot(px[b] - px[a], pz[b] - pz[a]);
-    if (edge_cross <= 1e-9 * extent * edge) return false;
-  }
+  if (!strictly_inside(hull, support_polygon(points, n, hull), cx, cz, 1e-9 * extent)) return false;
   k.F.y() += N;
   k.tau.x() += w(1);
   k.tau.z() += w(2);

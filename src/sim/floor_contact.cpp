@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "lcp.hpp"
+#include "support_polygon.hpp"
 #include "tumble/world.hpp"
 
 namespace tumble {
@@ -21,11 +22,6 @@ Vec3 point_velocity(const RigidBody& b, const Vec3& omega, const Vec3& r) {
 void apply_impulse(RigidBody& b, const Vec3& r, const Vec3& impulse) {
   b.state.P += impulse;
   if (!b.is_particle()) b.state.L += r.cross(impulse);
-}
-
-// 2D cross product of (a - o) and (b - o) in the floor plane (x, z).
-double cross2(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
 }
 
 }  // namespace
@@ -75,37 +71,18 @@ void reduce_to_support(const RigidBody& b, const std::vector<int>& candidates, C
     for (int i : candidates) out.vertex[out.count++] = i;
     return;
   }
-  // The candidates seen from above (x, z), their 2-D convex hull by Andrew's monotone chain
-  // (ties broken by vertex index, so the result is deterministic).
-  struct P {
-    double x, z;
-    int index;
-  };
-  std::vector<P> p;
-  p.reserve(candidates.size());
+  // The candidates seen from above (x, z), and the corners of their support polygon.
+  std::vector<PlanePoint> points;
+  points.reserve(candidates.size());
   for (int i : candidates) {
     const Vec3 w = b.state.R * b.vertices()[i];
-    p.push_back({w.x(), w.z(), i});
+    points.push_back({w.x(), w.z(), i});
   }
-  std::sort(p.begin(), p.end(), [](const P& l, const P& r) {
-    return l.x < r.x || (l.x == r.x && (l.z < r.z || (l.z == r.z && l.index < r.index)));
-  });
-  auto cross = [](const P& o, const P& a, const P& c) {
-    return (a.x - o.x) * (c.z - o.z) - (a.z - o.z) * (c.x - o.x);
-  };
-  std::vector<P> hull(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
-    hull[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
-    hull[k++] = p[i];
-  }
-  hull.resize(k > 1 ? k - 1 : k);  // the last point repeats the first
+  std::vector<PlanePoint> hull(2 * points.size() + 1);
+  hull.resize(static_cast<std::size_t>(
+      support_polygon(points.data(), static_cast<int>(points.size()), hull.data())));
   if (static_cast<int>(hull.size()) <= ContactSet::kMaxPoints) {
-    for (const P& h : hull) out.vertex[out.count++] = h.index;
+    for (const PlanePoint& h : hull) out.vertex[out.count++] = h.index;
     return;
   }
   // More corners than the LCP takes: keep the corner extreme in each of 8 directions 45° apart
@@ -113,8 +90,8 @@ void reduce_to_support(const RigidBody& b, const std::vector<int>& candidates, C
   for (int d = 0; d < 8; ++d) {
     const double angle = d * (kPi / 4.0);
     const double cx = std::cos(angle), cz = std::sin(angle);
-    const P* best = &hull[0];
-    for (const P& h : hull)
+    const PlanePoint* best = &hull[0];
+    for (const PlanePoint& h : hull)
       if (h.x * cx + h.z * cz > best->x * cx + best->z * cz) best = &h;
     const auto chosen = out.indices();
     if (std::find(chosen.begin(), chosen.end(), best->index) == chosen.end())
@@ -275,33 +252,15 @@ bool can_rest(const RigidBody& b, const ContactSet& c, const Vec3& gravity, doub
   double reach = 0.0;
   for (const Vec3& v : b.vertices()) reach = std::max(reach, v.norm());
   if (b.velocity().norm() + omega.norm() * reach > sleep_speed) return false;
-  // Convex hull of the resting points seen from above (Andrew's monotone chain), then the centre
-  // of mass must lie strictly inside it: on an edge the body could still tip.
-  std::vector<Eigen::Vector2d> p;
+  // The support polygon of the resting points seen from above: the centre of mass must lie
+  // strictly inside it (by 1e-6 of each edge's length): on an edge the body could still tip.
+  PlanePoint points[ContactSet::kMaxPoints], hull[2 * ContactSet::kMaxPoints + 1];
   for (int i = 0; i < c.count; ++i) {
     const Vec3 w = b.state.x + b.state.R * b.vertices()[c.vertex[i]];
-    p.emplace_back(w.x(), w.z());
+    points[i] = {w.x(), w.z(), c.vertex[i]};
   }
-  std::sort(p.begin(), p.end(), [](const auto& l, const auto& r) {
-    return l.x() < r.x() || (l.x() == r.x() && l.y() < r.y());
-  });
-  std::vector<Eigen::Vector2d> hull(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
-    hull[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross2(hull[k - 2], hull[k - 1], p[i]) <= 0.0) --k;
-    hull[k++] = p[i];
-  }
-  if (k < 4) return false;  // fewer than 3 distinct hull corners: an edge or a point
-  const Eigen::Vector2d com(b.state.x.x(), b.state.x.z());
-  for (std::size_t i = 0; i + 1 < k; ++i) {
-    const double edge = (hull[i + 1] - hull[i]).norm();
-    if (cross2(hull[i], hull[i + 1], com) <= 1e-6 * edge) return false;
-  }
-  return true;
+  const int corners = support_polygon(points, c.count, hull);
+  return strictly_inside(hull, corners, b.state.x.x(), b.state.x.z(), 1e-6);
 }
 
 }  // namespace tumble
