@@ -1,6 +1,8 @@
 // Shared lighting: colours are linear inside, encoded to sRGB once at the end.
 uniform vec3 u_light_direction;  // unit, the direction light travels
-uniform vec3 u_camera_position;
+// The viewer: its position (w = 1, perspective) or the direction towards it (w = 0,
+// orthographic: parallel rays), so that u_eye.xyz - u_eye.w * p points from p to the viewer.
+uniform vec4 u_eye;
 
 vec3 srgb_to_linear(vec3 c) {
   return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(0.04045, c));
@@ -14,7 +16,7 @@ vec3 linear_to_srgb(vec3 c) {
 vec3 shade(vec3 albedo, vec3 normal, vec3 position, float shininess, float specular) {
   vec3 n = normalize(normal);
   vec3 l = -u_light_direction;
-  vec3 v = normalize(u_camera_position - position);
+  vec3 v = normalize(u_eye.xyz - u_eye.w * position);
   vec3 h = normalize(l + v);
   float diffuse = max(dot(n, l), 0.0);
   float spec = diffuse > 0.0 ? pow(max(dot(n, h), 0.0), shininess) * specular : 0.0;

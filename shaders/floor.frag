@@ -3,7 +3,11 @@ in vec3 v_world_position;
 uniform vec3 u_tile_light;   // sRGB, lit (the floor is flat: its lighting is one colour per tile)
 uniform vec3 u_tile_dark;    // sRGB, lit
 uniform vec3 u_background;   // sRGB
-uniform float u_fade_start;  // metres from the floor centre where it starts to fade away
+uniform bool u_transparent;  // the backdrop is transparent: fade into alpha 0, not the sky
+uniform vec2 u_fade_centre;  // xz where the floor is drawn in full
+uniform vec2 u_fade_axis;    // (0, 0): fade with the distance from the centre; else along this
+                             // unit direction only (an orthographic camera's depth)
+uniform float u_fade_start;  // metres from the centre where it starts to fade away
 uniform float u_fade_end;
 
 out vec4 out_color;
@@ -18,7 +22,14 @@ void main() {
   // Tile colours arrive lit and encoded; mixing them in sRGB is close enough for a filter
   // footprint and saves two pow() per pixel on a CPU rasteriser.
   vec3 color = mix(u_tile_light, u_tile_dark, checker);
-  // Fade into the background towards the edge, so the floor has no hard horizon.
-  float fade = smoothstep(u_fade_start, u_fade_end, length(p));
-  out_color = vec4(mix(color, u_background, fade), 1.0);
+  // Fade into the background towards the edge, so the floor has no hard horizon. With a
+  // transparent backdrop the floor fades into transparency the same way (premultiplied), so a
+  // figure keeps its ground and ends softly on whatever page it is placed.
+  vec2 d = p - u_fade_centre;
+  float distance = dot(u_fade_axis, u_fade_axis) > 0.0 ? abs(dot(d, u_fade_axis)) : length(d);
+  float fade = smoothstep(u_fade_start, u_fade_end, distance);
+  if (u_transparent)
+    out_color = vec4(color * (1.0 - fade), 1.0 - fade);
+  else
+    out_color = vec4(mix(color, u_background, fade), 1.0);
 }

@@ -3,6 +3,7 @@ in vec3 v_world_normal;
 
 uniform vec3 u_color;     // sRGB
 uniform float u_shadow;   // > 0: draw a flat shadow of this opacity instead of a lit surface
+uniform float u_opacity;  // 1: opaque; less: a translucent pose, premultiplied for "over"
 
 out vec4 out_color;
 
@@ -12,5 +13,5 @@ void main() {
     return;
   }
   vec3 lit = shade(srgb_to_linear(u_color), v_world_normal, v_world_position, 48.0, 0.25);
-  out_color = vec4(linear_to_srgb(lit), 1.0);
+  out_color = vec4(linear_to_srgb(lit) * u_opacity, u_opacity);
 }

@@ -15,14 +15,18 @@ namespace tumble {
 Eigen::Matrix4d look_at(const Vec3& eye, const Vec3& target, const Vec3& up);
 /// OpenGL perspective projection (clip space, depth to [-1, 1]).
 Eigen::Matrix4d perspective(double fov_y_deg, double aspect, double near, double far);
+/// OpenGL orthographic projection of a view `height` units tall (width = height · aspect),
+/// centred on the view axis, depth [near, far] to [-1, 1]. Clip w is 1 for every point.
+Eigen::Matrix4d orthographic(double height, double aspect, double near, double far);
 
 /// Index (scene order) of the body `camera.follow` names, if any.
 std::optional<std::size_t> followed_body(const Scene& scene);
 /// The point the scene's camera looks at when the bodies are as in `world`: the followed body's
 /// centre of mass, or camera.target.
 Vec3 camera_target(const Scene& scene, const World& world);
-/// View-projection of the scene's camera looking at `target`, at the scene's image aspect. The
-/// depth range follows the camera's distance to the target.
+/// View-projection of the scene's camera looking at `target`, at the scene's image aspect, in its
+/// projection (perspective with fov_deg, or orthographic ortho_height_m tall). The depth range
+/// follows the camera's distance to the target.
 Eigen::Matrix4d camera_view_projection(const Scene& scene, const Vec3& target);
 /// View-projection of the scene's camera for the bodies as they are in `world` (camera.follow
 /// included): what Renderer::draw() draws with.

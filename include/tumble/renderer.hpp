@@ -3,11 +3,17 @@
 /// OpenGL 3.3 core context (EglContext). The look: scene colours, a 1 m checker floor that fades
 /// into the background, Blinn-Phong lighting from [light], planar shadows of the bodies on the
 /// floor (exact for a plane and one extra cheap pass, instead of a shadow map), FXAA or MSAA,
-/// sRGB output.
+/// sRGB output. The camera is the scene's (perspective or orthographic, camera.hpp).
+///
+/// A picture may hold several exposures of the bodies (a stroboscopic figure): every pose with
+/// its shadow, the translucent ones blended back to front over the opaque ones, in one pass.
+/// With a transparent backdrop the background is alpha 0, the floor fades into transparency
+/// instead of into the sky, and shadows, translucent poses and anti-aliased edges carry alpha.
 
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -19,27 +25,45 @@
 
 namespace tumble {
 
+/// One exposure of a picture: the bodies as they are in `world`, drawn with `opacity` in (0, 1]
+/// (1: opaque, as in a frame of the clip; less: translucent, as the earlier poses of a strobe).
+/// Its shadow is drawn with the same share of the shadow's darkness.
+struct Exposure {
+  const World* world = nullptr;
+  double opacity = 1.0;
+};
+
+/// What lies behind the scene. Sky: the scene's background colour, every pixel opaque.
+/// Transparent: alpha 0 behind everything; frames come back as premultiplied RGBA
+/// (premultiplied.hpp turns them into straight alpha, or composites them over a colour).
+enum class Backdrop { Sky, Transparent };
+
 class Renderer {
  public:
-  /// Compiles the embedded shaders and builds the framebuffers for scene.render's size and
-  /// msaa (clamped to what the driver offers). Throws tumble::Error (Environment) on GL failure.
   /// How frames come back to the CPU. Async reads into pixel-pack buffers and collects them a
   /// frame later, so a GPU renders the next frame while the copy runs; on a CPU rasteriser
   /// (llvmpipe) the copy happens at once anyway and Sync saves a memcpy. Auto picks by renderer.
   enum class Readback { Auto, Sync, Async };
 
+  /// Compiles the embedded shaders and builds the framebuffers for scene.render's size and
+  /// msaa (clamped to what the driver offers). Throws tumble::Error (Environment) on GL failure.
   /// `models`: the loaded mesh of each mesh body (uploaded once); may be null for a scene
   /// without meshes.
   explicit Renderer(const Scene& scene, Readback readback = Readback::Auto,
-                    const SceneModels* models = nullptr);
+                    const SceneModels* models = nullptr, Backdrop backdrop = Backdrop::Sky);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
   /// Renders the bodies of `world` (in scene order) as they are now.
   void draw(const World& world);
+  /// Renders several exposures into one picture (at least one), seen by the camera of the last
+  /// one (camera.follow). Each exposure's shadow darkens the floor once; translucent bodies are
+  /// sorted back to front by their centres and each shows only its nearest surface.
+  void draw(std::span<const Exposure> exposures);
   /// Reads the last drawn frame into `rgba` (resized) as RGBA rows, bottom-up as OpenGL returns
-  /// them: straight into the caller's buffer, no copy.
+  /// them: straight into the caller's buffer, no copy. Premultiplied alpha (Transparent), or
+  /// alpha 255 everywhere (Sky).
   void read_rgba(std::vector<std::uint8_t>& rgba);
   /// Starts reading the last drawn frame back; at most two may be in flight. Drawing may go on.
   void begin_readback();
@@ -47,13 +71,14 @@ class Renderer {
   /// storage may be swapped in for reuse).
   void finish_readback(std::vector<std::uint8_t>& rgba);
   bool async_readback() const;
-  /// The last drawn frame as a top-down RGB image.
+  /// The last drawn frame as a top-down image: RGB (Sky), or straight-alpha RGBA (Transparent).
   Image read_image();
 
   int width() const;
   int height() const;
   int msaa_samples() const;     ///< samples actually used (0 = none)
   Antialias antialias() const;  ///< the technique in use (msaa falls back to none if unsupported)
+  Backdrop backdrop() const;
 
  private:
   struct Impl;

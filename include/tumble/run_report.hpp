@@ -15,8 +15,25 @@ namespace tumble {
 
 /// Wall time per stage, seconds. Stages a command does not run stay absent from run.json.
 struct StageTimes {
-  std::optional<double> simulate_s, render_s, readback_s, encode_s, png_s;
+  std::optional<double> simulate_s, render_s, readback_s, encode_s, png_s, gif_s, webp_s;
   double total_s = 0.0;
+};
+
+/// What `render --strobe / --transparent / --gif / --webp` made, as run.json's "figures".
+struct FigureFacts {
+  bool transparent = false;              ///< PNG, GIF and WebP outputs carry alpha
+  std::vector<double> strobe_times_s;    ///< the strobe's poses (empty: no strobe)
+  std::vector<double> strobe_opacities;  ///< each pose's opacity, the last 1
+  /// An animation: its frames and the rate the format could carry.
+  struct Animation {
+    long frames = 0;          ///< frames written (GIF: every frame_step-th of the clip)
+    int frame_step = 1;       ///< clip frames per animation frame
+    double rate_hz = 0.0;     ///< frames per second, on average
+    std::vector<int> delays;  ///< distinct frame durations used (GIF: cs, WebP: ms)
+    bool exact = false;       ///< every duration is exactly frame_step / fps
+    double duration_s = 0.0;  ///< how long one loop lasts
+  };
+  std::optional<Animation> gif, webp;
 };
 
 struct RunReport {
@@ -34,6 +51,7 @@ struct RunReport {
   std::vector<std::filesystem::path> outputs;  ///< hashed when the report is written
   const World* world = nullptr;                ///< for per-body mass properties
   const SceneModels* models = nullptr;         ///< mesh bodies: volume, axes, hull, repairs
+  std::optional<FigureFacts> figures;          ///< render only
 };
 
 /// Writes run.json atomically at `path`.

@@ -62,11 +62,19 @@ struct RenderSettings {
   Color background{0xdf, 0xe6, 0xee};
 };
 
+/// How the camera maps the scene to the image: a perspective (a pinhole, things shrink with
+/// distance) or an orthographic projection (parallel rays: sizes and heights read true at any
+/// depth, the side view of textbook figures).
+enum class Projection { Perspective, Orthographic };
+inline constexpr std::array<std::string_view, 2> kProjectionNames = {"perspective", "orthographic"};
+
 struct CameraSettings {
   Vec3 position{5.0, 3.0, 6.0};
   Vec3 target{0.0, 0.5, 0.0};
   Vec3 up{0.0, 1.0, 0.0};
-  double fov_deg = 45.0;
+  double fov_deg = 45.0;  ///< perspective only: vertical field of view
+  Projection projection = Projection::Perspective;
+  double ortho_height_m = 4.0;  ///< orthographic only: metres of the scene shown top to bottom
   std::optional<std::string> follow;  ///< name of a body to keep in view
 };
 

@@ -50,6 +50,7 @@ struct SimulateOptions {
   CommonOptions common;
   std::optional<double> rate_hz;
   bool every_step = false;
+  bool plot = false;  // also trajectory.svg: height and energy over time, impacts marked
 };
 void add_simulate_command(CLI::App& app, SimulateOptions& o);
 int run_simulate(const SimulateOptions& o);
@@ -64,6 +65,12 @@ struct RenderOptions {
   std::string antialias;  // empty: the scene's
   std::string encoder = "auto";
   std::optional<int> egl_device;
+  // Documentation figures.
+  std::optional<int> strobe;  // strobe.png with N poses
+  std::string strobe_span;    // "A:B"; empty: the whole run
+  bool transparent = false;   // PNG, GIF and WebP outputs with a transparent background
+  bool gif = false;           // clip.gif
+  bool webp = false;          // clip.webp
 };
 void add_render_command(CLI::App& app, RenderOptions& o);
 int run_render(const RenderOptions& o);

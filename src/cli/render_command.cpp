@@ -1,25 +1,22 @@
-// tumble render: simulate, draw every frame at t_k = k/fps through EGL, and write clip.mp4,
-// frames/frame_NNNNN.png (--png), still_<T>.png (--still T) and run.json.
-//
-// Pipeline: this thread samples the world, draws and reads back; an encoder thread behind a
-// bounded queue does swscale + H.264 and PNG. On a GPU the encoder is the slow stage and the
-// overlap pays; on llvmpipe rendering already uses every core and the queue costs nothing.
+// tumble render: simulate, draw through EGL, and write what was asked for: clip.mp4,
+// frames/frame_NNNNN.png (--png), still_<T>.png (--still T), strobe.png (--strobe N), clip.gif
+// (--gif), clip.webp (--webp), all with a transparent background where they can carry one
+// (--transparent), and run.json. This file checks the options and chooses the sinks; the frame
+// pipeline (frame_pipeline.hpp) draws and feeds them, each sink writes its own output.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <exception>
-#include <thread>
 
 #include "commands.hpp"
+#include "frame_pipeline.hpp"
+#include "frame_sinks.hpp"
 #include "progress.hpp"
-#include "tumble/bounded_queue.hpp"
 #include "tumble/egl_context.hpp"
-#include "tumble/mp4_writer.hpp"
-#include "tumble/png.hpp"
 #include "tumble/renderer.hpp"
 #include "tumble/run_report.hpp"
-#include "tumble/sampler.hpp"
 #include "tumble/trajectory_writer.hpp"
+#include "tumble/webp_writer.hpp"
 #include "tumble/world_builder.hpp"
 
 namespace tumble::cli {
@@ -31,22 +28,33 @@ namespace fs = std::filesystem;
   throw Error(ErrorKind::BadInput, message);
 }
 
-std::string frame_name(long k) {
-  return frame_stem(k) + ".png";
-}
+// More poses than this cannot be told apart in one picture; a typo is likelier.
+constexpr int kMaxStrobePoses = 1000;
 
-// A frame or a still, in time order.
-struct Event {
-  double t;
-  long frame;  // -1 for a still
-  std::size_t still;
-};
+// The span "A:B" of --strobe-span, checked against the run.
+std::pair<double, double> parse_span(const std::string& text, double duration) {
+  const std::size_t colon = text.find(':');
+  double a = 0.0, b = 0.0;
+  const char* end = text.data() + text.size();
+  bool ok = colon != std::string::npos && colon > 0 && colon + 1 < text.size();
+  if (ok) {
+    const auto ra = std::from_chars(text.data(), text.data() + colon, a);
+    const auto rb = std::from_chars(text.data() + colon + 1, end, b);
+    ok = ra.ec == std::errc() && ra.ptr == text.data() + colon && rb.ec == std::errc() &&
+         rb.ptr == end && std::isfinite(a) && std::isfinite(b);
+  }
+  if (!ok) bad("--strobe-span must look like 0.5:2.5 (seconds from:to), not \"" + text + "\"");
+  if (!(a < b)) bad("--strobe-span " + text + " must run forwards: its start below its end");
+  if (a < 0.0 || b > duration)
+    bad("--strobe-span " + text + " is outside the run [0, " + format_double(duration) + "]");
+  return {a + 0.0, b};  // -0 starts at 0
+}
 
 }  // namespace
 
 void add_render_command(CLI::App& app, RenderOptions& o) {
   CLI::App* cmd = app.add_subcommand(
-      "render", "Simulate and render: clip.mp4, PNG frames, stills and run.json");
+      "render", "Simulate and render: clip.mp4, PNG frames, stills, figures and run.json");
   add_common_options(*cmd, o.common);
   add_strict_option(*cmd, o.common);
   cmd->add_flag("--png", o.png, "Also write every frame as frames/frame_NNNNN.png");
@@ -59,6 +67,16 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--encoder", o.encoder,
                   "H.264 encoder: auto (hardware where present, else libx264) or a name");
   cmd->add_option("--egl-device", o.egl_device, "Render on EGL device N (see 'tumble info')");
+  cmd->add_option("--strobe", o.strobe,
+                  "Write strobe.png: every body at N (>= 2) evenly spaced times in one image, "
+                  "earlier poses fainter");
+  cmd->add_option("--strobe-span", o.strobe_span,
+                  "The strobe's time span A:B in seconds (default: the whole run)");
+  cmd->add_flag("--transparent", o.transparent,
+                "PNG frames, stills, strobe, GIF and WebP with a transparent background (the "
+                "MP4 keeps the sky)");
+  cmd->add_flag("--gif", o.gif, "Also write clip.gif (looping, one palette for the clip)");
+  cmd->add_flag("--webp", o.webp, "Also write clip.webp (animated WebP, looping)");
 }
 
 int run_render(const RenderOptions& o) {
@@ -82,181 +100,104 @@ int run_render(const RenderOptions& o) {
   const double duration = scene.simulation.duration_s;
   const long frames = std::lround(duration * fps);
   const bool want_mp4 = !o.no_mp4;
-  if (frames < 1 && (want_mp4 || o.png))
+  const bool want_clip = want_mp4 || o.png || o.gif || o.webp;  // outputs of every frame
+  if (frames < 1 && want_clip)
     bad("duration " + format_double(duration) + " s at " + std::to_string(fps) +
         " fps gives no frame");
   for (double t : o.stills)
     if (!std::isfinite(t) || t < 0.0 || t > duration)
       bad("--still " + format_double(t) + " is outside the run [0, " + format_double(duration) +
           "]");
-  if (!want_mp4 && !o.png && o.stills.empty())
-    bad("nothing to write: --no-mp4 needs --png or --still");
+  if (o.strobe && (*o.strobe < 2 || *o.strobe > kMaxStrobePoses))
+    bad("--strobe " + std::to_string(*o.strobe) + ": a strobe needs 2 to " +
+        std::to_string(kMaxStrobePoses) + " poses");
+  if (!o.strobe_span.empty() && !o.strobe) bad("--strobe-span needs --strobe N");
+  const auto [strobe_from, strobe_to] =
+      o.strobe_span.empty() ? std::pair(0.0, duration) : parse_span(o.strobe_span, duration);
+  if (!want_clip && o.stills.empty() && !o.strobe)
+    bad("nothing to write: --no-mp4 needs --png, --still, --strobe, --gif or --webp");
+  if (o.transparent && !o.png && o.stills.empty() && !o.strobe && !o.gif && !o.webp)
+    bad("--transparent applies to PNG outputs (--png, --still, --strobe), --gif and --webp; "
+        "an MP4 has no alpha");
   if (want_mp4 && (width % 2 || height % 2))
     bad("H.264 (yuv420p) needs an even width and height; got " + std::to_string(width) + "x" +
         std::to_string(height) + " (use an even --size, or --no-mp4 with --png)");
+  if (o.webp && (width > WebpWriter::kMaxSide || height > WebpWriter::kMaxSide))
+    bad("--webp: a WebP is at most " + std::to_string(WebpWriter::kMaxSide) +
+        " pixels a side; got " + std::to_string(width) + "x" + std::to_string(height));
   const SceneModels models = load_models(scene);
   const WorldDef def = make_world_def(scene, models);
 
   const fs::path dir = output_dir(o.common, scene);
   if (o.png) make_output_dir(dir / "frames");
   EglContext gl(o.egl_device.value_or(-1));
-  Renderer renderer(scene, Renderer::Readback::Auto, &models);
-  std::optional<Mp4Writer> mp4;
-  if (want_mp4) mp4.emplace(dir / "clip.mp4", Mp4Settings{width, height, fps, o.crf, o.encoder});
+  Renderer renderer(scene, Renderer::Readback::Auto, &models,
+                    o.transparent ? Backdrop::Transparent : Backdrop::Sky);
 
-  // The encoder thread: H.264 and PNG frames, fed through a bounded queue of frame buffers that
-  // are recycled, so memory is a few frames whatever the clip's length.
-  struct Job {
-    long frame;
-    std::vector<std::uint8_t> rgba;
-  };
-  BoundedQueue<Job> queue(3);
-  BoundedQueue<std::vector<std::uint8_t>> spare(4);
-  double encode_s = 0.0, png_s = 0.0;  // the worker's; the main thread keeps still_s
-  std::exception_ptr worker_error;
-  std::thread worker([&] {
-    try {
-      while (auto job = queue.pop()) {
-        if (mp4) {
-          const auto t0 = Clock::now();
-          mp4->add_frame(job->rgba.data(), 4, std::ptrdiff_t(width) * 4, /*bottom_up=*/true);
-          encode_s += seconds_since(t0);
-        }
-        if (o.png) {
-          const auto t0 = Clock::now();
-          write_png(dir / "frames" / frame_name(job->frame),
-                    image_from_gl_rgba(job->rgba.data(), width, height));
-          png_s += seconds_since(t0);
-        }
-        spare.push(std::move(job->rgba));
-      }
-    } catch (...) {
-      worker_error = std::current_exception();
-      queue.close();  // the producer's next push fails and it stops
-      spare.close();  // and it never waits for a buffer that will not come back
-    }
-  });
-  // Whatever happens below, the worker is stopped and joined before anything unwinds past it.
-  struct Join {
-    BoundedQueue<Job>& q;
-    std::thread& t;
-    ~Join() {
-      q.close();
-      if (t.joinable()) t.join();
-    }
-  } join{queue, worker};
-
-  // Frames k/fps and stills merged in time order on the fly (the sampler only goes forward);
-  // nothing here grows with the clip's length. A still at a frame's time comes first.
+  // The sinks: every clip frame to the clip sinks; each still and the strobe is a picture.
+  const long clip_frames = want_clip ? frames : 0;
+  FramePipeline pipeline(def, renderer, fps, clip_frames);
+  if (want_mp4)
+    pipeline.add_clip_sink(make_mp4_sink(dir / "clip.mp4", {width, height, fps, o.crf, o.encoder},
+                                         scene.render.background));
+  if (o.png) pipeline.add_clip_sink(make_png_frames_sink(dir / "frames"));
+  if (o.gif)
+    pipeline.add_clip_sink(
+        make_gif_sink(dir / "clip.gif", width, height, fps, clip_frames, o.transparent));
+  if (o.webp)
+    pipeline.add_clip_sink(make_webp_sink(dir / "clip.webp", width, height, fps, o.transparent));
   std::vector<double> stills = o.stills;
   for (double& t : stills) t += 0.0;  // -0 names the same still as 0
   std::sort(stills.begin(), stills.end());
   stills.erase(std::unique(stills.begin(), stills.end()), stills.end());
-  const long frames_to_draw = want_mp4 || o.png ? frames : 0;
-  long next_frame = 0;
-  std::size_t next_still = 0;
-  auto next_event = [&]() -> std::optional<Event> {
-    const bool frame_left = next_frame < frames_to_draw, still_left = next_still < stills.size();
-    if (!frame_left && !still_left) return std::nullopt;
-    const double frame_t = frame_left ? double(next_frame) / fps : INFINITY;
-    if (still_left && stills[next_still] <= frame_t)
-      return Event{stills[next_still], -1, next_still++};
-    return Event{frame_t, next_frame++, 0};
-  };
+  for (const double t : stills)
+    pipeline.add_picture(
+        still_picture(t, make_png_image_sink(dir / ("still_" + format_double(t) + ".png"))));
+  FigureFacts figures;
+  figures.transparent = o.transparent;
+  if (o.strobe) {
+    // A figure written once: the smaller PNG is worth its ~20 ms.
+    Picture strobe =
+        strobe_picture(*o.strobe, strobe_from, strobe_to,
+                       make_png_image_sink(dir / "strobe.png", PngOptions::Packing::Small));
+    figures.strobe_times_s = strobe.times_s;
+    figures.strobe_opacities = strobe.opacities;
+    pipeline.add_picture(std::move(strobe));
+  }
 
-  World world(def);
-  Sampler sampler(world);
-  double simulate_s = 0.0, render_s = 0.0, readback_s = 0.0, still_s = 0.0;
-  std::vector<fs::path> still_paths;
-  Progress progress(!o.common.quiet, frames_to_draw, "render", "frames");
-  long frames_done = 0;
-  // Frame k is read back while frame k+1 is drawn (asynchronous on GPUs): it is collected, in
-  // order, after the next frame's readback has begun, or at the end.
-  std::optional<long> pending;
-  auto collect_pending = [&]() -> bool {
-    const auto t0 = Clock::now();
-    // A recycled buffer: after the first few frames, no allocation.
-    std::vector<std::uint8_t> buffer;
-    if (frames_done >= 4) buffer = spare.pop().value_or(std::vector<std::uint8_t>{});
-    renderer.finish_readback(buffer);
-    readback_s += seconds_since(t0);
-    const bool pushed = queue.push(Job{*pending, std::move(buffer)});  // false: the worker failed
-    pending.reset();
-    progress.update(++frames_done);
-    return pushed;
-  };
-  while (const std::optional<Event> next = next_event()) {
-    const Event& e = *next;
-    throw_if_interrupted();
-    auto t0 = Clock::now();
-    const World snapshot = sampler.at(e.t);
-    simulate_s += seconds_since(t0);
-    t0 = Clock::now();
-    renderer.draw(snapshot);
-    render_s += seconds_since(t0);
-    if (e.frame < 0) {
-      t0 = Clock::now();
-      const fs::path path = dir / ("still_" + format_double(stills[e.still]) + ".png");
-      write_png(path, renderer.read_image());
-      still_s += seconds_since(t0);
-      still_paths.push_back(path);
-      continue;
-    }
-    t0 = Clock::now();
-    renderer.begin_readback();
-    readback_s += seconds_since(t0);
-    if (pending && !collect_pending()) break;
-    pending = e.frame;
-  }
-  if (pending) collect_pending();
-  queue.close();
-  worker.join();
-  if (worker_error) std::rethrow_exception(worker_error);
-  if (mp4) {
-    const auto t0 = Clock::now();
-    mp4->finish();
-    encode_s += seconds_since(t0);
-  }
+  Progress progress(!o.common.quiet, clip_frames, "render", "frames");
+  pipeline.run(progress);
 
   RunReport report;
   report.command = "render";
   report.scene = &scene;
   report.steps = step_count_for(duration, def.dt_s);  // the last may be taken part-way
-  report.samples = frames_to_draw;
+  report.samples = clip_frames;
   report.sample_rate_hz = fps;
   report.gl_vendor = gl.info().gl_vendor;
   report.gl_renderer =
       gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " + gl.info().platform + ")";
-  report.encoder = mp4 ? mp4->encoder_name() : "";
   report.antialias_used =
       renderer.antialias() == Antialias::Msaa
           ? "msaa " + std::to_string(renderer.msaa_samples()) + "x"
           : std::string(kAntialiasNames[static_cast<int>(renderer.antialias())]);
-  report.times.simulate_s = simulate_s;
-  report.times.render_s = render_s;
-  report.times.readback_s = readback_s;
-  if (mp4) report.times.encode_s = encode_s;
-  if (o.png || !still_paths.empty()) report.times.png_s = png_s + still_s;
+  if (o.transparent || o.strobe || o.gif || o.webp) report.figures = figures;
+  pipeline.report(report);
   report.energy_start_J = World(def).total_energy();
-  report.energy_end_J = sampler.at(duration).total_energy();
-  report.contact = world.contact_stats();
-  if (mp4) report.outputs.push_back(dir / "clip.mp4");
-  if (o.png)
-    for (long k = 0; k < frames_to_draw; ++k)
-      report.outputs.push_back(dir / "frames" / frame_name(k));
-  report.outputs.insert(report.outputs.end(), still_paths.begin(), still_paths.end());
-  report.world = &world;
+  report.energy_end_J = pipeline.sampler().at(duration).total_energy();
+  report.contact = pipeline.world().contact_stats();
+  report.world = &pipeline.world();
   report.models = &models;
   report.times.total_s = seconds_since(start);
   write_run_report(dir / "run.json", report);
   if (!o.common.quiet) {
     const std::string stills_text =
-        still_paths.empty() ? "" : " and " + std::to_string(still_paths.size()) + " still(s)";
+        stills.empty() ? "" : " and " + std::to_string(stills.size()) + " still(s)";
     std::printf("tumble: rendered %ld frames (%dx%d, %d fps)%s on %s in %.2f s into %s\n",
-                frames_to_draw, width, height, fps, stills_text.c_str(),
-                gl.info().gl_renderer.c_str(), report.times.total_s, dir.c_str());
+                clip_frames, width, height, fps, stills_text.c_str(), gl.info().gl_renderer.c_str(),
+                report.times.total_s, dir.c_str());
   }
-  return report_diagnostics(o.common, world.diagnostics());
+  return report_diagnostics(o.common, pipeline.world().diagnostics());
 }
 
 }  // namespace tumble::cli

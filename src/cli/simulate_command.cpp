@@ -4,6 +4,8 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "trajectory_plot.hpp"
+#include "tumble/atomic_file.hpp"
 #include "tumble/run_report.hpp"
 #include "tumble/sampler.hpp"
 #include "tumble/trajectory_writer.hpp"
@@ -17,6 +19,9 @@ void add_simulate_command(CLI::App& app, SimulateOptions& o) {
   add_strict_option(*cmd, o.common);
   cmd->add_option("--rate", o.rate_hz, "Sample rate in Hz (default: the scene's fps)");
   cmd->add_flag("--every-step", o.every_step, "Sample at every step boundary instead");
+  cmd->add_flag("--plot", o.plot,
+                "Also write trajectory.svg: height and energy of each body over time, impacts "
+                "marked");
 }
 
 int run_simulate(const SimulateOptions& o) {
@@ -39,6 +44,7 @@ int run_simulate(const SimulateOptions& o) {
   Sampler sampler(world);
   TrajectoryWriter csv(dir / "trajectory.csv");
   Progress progress(!o.common.quiet, samples, "simulate", "samples");
+  TrajectoryPlot plot(scene.stem, duration, samples);
   double energy_start = 0.0, energy_end = 0.0;
   for (long k = 0; k < samples; ++k) {
     // Every step boundary n·dt, or k/rate; the last sample is the end of the run exactly, so
@@ -49,12 +55,14 @@ int run_simulate(const SimulateOptions& o) {
     throw_if_interrupted();
     const World snapshot = sampler.at(t);
     csv.write(t, snapshot);
+    if (o.plot) plot.add(k, t, snapshot);
     if (k == 0) energy_start = snapshot.total_energy();
     if (k == samples - 1) energy_end = snapshot.total_energy();
     progress.update(k + 1);
   }
   csv.commit();
   const double simulate_s = seconds_since(start);
+  if (o.plot) write_file_atomically(dir / "trajectory.svg", plot.svg(world.contact_stats().events));
 
   RunReport report;
   report.command = "simulate";
@@ -69,12 +77,14 @@ int run_simulate(const SimulateOptions& o) {
   report.energy_end_J = energy_end;
   report.contact = world.contact_stats();
   report.outputs = {dir / "trajectory.csv"};
+  if (o.plot) report.outputs.push_back(dir / "trajectory.svg");
   report.world = &world;
   report.models = &models;
   write_run_report(dir / "run.json", report);
   if (!o.common.quiet)
-    std::printf("tumble: wrote %s (%ld rows) and %s\n", (dir / "trajectory.csv").c_str(),
-                csv.rows(), (dir / "run.json").c_str());
+    std::printf("tumble: wrote %s (%ld rows)%s and %s\n", (dir / "trajectory.csv").c_str(),
+                csv.rows(), o.plot ? (", " + (dir / "trajectory.svg").string()).c_str() : "",
+                (dir / "run.json").c_str());
   return report_diagnostics(o.common, world.diagnostics());
 }
 

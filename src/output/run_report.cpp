@@ -43,8 +43,29 @@ ordered_json settings_json(const Scene& s) {
                  {"target", vec(s.camera.target)},
                  {"up", vec(s.camera.up)},
                  {"fov_deg", s.camera.fov_deg},
+                 {"projection", kProjectionNames[static_cast<int>(s.camera.projection)]},
+                 {"ortho_height", s.camera.ortho_height_m},
                  {"follow", s.camera.follow ? ordered_json(*s.camera.follow) : ordered_json()}};
   j["light"] = {{"direction", vec(s.light.direction)}, {"shadows", s.light.shadows}};
+  return j;
+}
+
+ordered_json animation_json(const std::optional<FigureFacts::Animation>& a, const char* unit) {
+  if (!a) return nullptr;
+  return {{"frames", a->frames},   {"frame_step", a->frame_step},
+          {"rate_hz", a->rate_hz}, {std::string("delays_") + unit, a->delays},
+          {"exact", a->exact},     {"duration_s", a->duration_s}};
+}
+
+ordered_json figures_json(const FigureFacts& f) {
+  ordered_json j;
+  j["transparent"] = f.transparent;
+  j["strobe"] = f.strobe_times_s.empty() ? ordered_json()
+                                         : ordered_json{{"poses", f.strobe_times_s.size()},
+                                                        {"times_s", f.strobe_times_s},
+                                                        {"opacities", f.strobe_opacities}};
+  j["gif"] = animation_json(f.gif, "cs");
+  j["webp"] = animation_json(f.webp, "ms");
   return j;
 }
 
@@ -86,6 +107,8 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
   stage("readback_s", r.times.readback_s);
   stage("encode_s", r.times.encode_s);
   stage("png_s", r.times.png_s);
+  stage("gif_s", r.times.gif_s);
+  stage("webp_s", r.times.webp_s);
   times["total_s"] = r.times.total_s;
   j["wall_time"] = times;
   j["physics"] = {{"energy_start_J", r.energy_start_J},
@@ -103,6 +126,7 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
                              {"fix", d.fix},
                              {"occurrences", d.occurrences}});
   j["diagnostics"] = diagnostics;
+  if (r.figures) j["figures"] = figures_json(*r.figures);
   ordered_json outputs = ordered_json::array();
   for (const auto& p : r.outputs)
     outputs.push_back({{"path", p.string()}, {"sha256", sha256_file_hex(p)}});

@@ -32,6 +32,15 @@ Mat4 perspective(double fov_y_deg, double aspect, double near, double far) {
   return m;
 }
 
+Mat4 orthographic(double height, double aspect, double near, double far) {
+  Mat4 m = Mat4::Identity();
+  m(0, 0) = 2.0 / (height * aspect);
+  m(1, 1) = 2.0 / height;
+  m(2, 2) = -2.0 / (far - near);
+  m(2, 3) = -(far + near) / (far - near);
+  return m;
+}
+
 std::optional<std::size_t> followed_body(const Scene& scene) {
   if (!scene.camera.follow) return std::nullopt;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
@@ -52,6 +61,12 @@ Mat4 camera_view_projection(const Scene& scene, const Vec3& target) {
   const double distance = (cam.position - target).norm();
   const double near = std::max(0.01, 0.02 * distance), far = 200.0 + 4.0 * distance;
   const double aspect = double(scene.render.width) / scene.render.height;
+  // The same eye, view axis and depth range in both projections: an orthographic camera differs
+  // only in its parallel rays, so switching projection keeps the framing's centre and the
+  // light, shading and depth order of the picture. (A near plane > 0 still clips what is
+  // behind the eye, as a perspective camera would.)
+  if (cam.projection == Projection::Orthographic)
+    return orthographic(cam.ortho_height_m, aspect, near, far) * view;
   return perspective(cam.fov_deg, aspect, near, far) * view;
 }
 

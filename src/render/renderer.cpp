@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 
 #include "gl_resources.hpp"
 #include "tumble/camera.hpp"
 #include "tumble/error.hpp"
+#include "tumble/premultiplied.hpp"
 
 namespace tumble {
 namespace {
@@ -47,6 +49,7 @@ struct Renderer::Impl {
   std::vector<Vec3> model_lo, model_hi;  // per mesh body: its model's bounding box, model frame
   int width, height, samples = 0;
   Antialias antialias;
+  Backdrop backdrop;
   GLuint mesh_program = 0, floor_program = 0, fxaa_program = 0;
   Mesh cube, sphere, floor;
   GLuint empty_vao = 0;                              // the full-screen triangle needs no buffers
@@ -62,12 +65,13 @@ struct Renderer::Impl {
   std::vector<std::uint8_t> sync_frame[2];
   int begun = 0, finished = 0;
 
-  Impl(const Scene& s, const SceneModels* m)
+  Impl(const Scene& s, const SceneModels* m, Backdrop b)
       : scene(s),
         models(m),
         width(s.render.width),
         height(s.render.height),
-        antialias(s.render.antialias) {}
+        antialias(s.render.antialias),
+        backdrop(b) {}
 
   ~Impl() {
     for (Mesh* m : {&cube, &sphere, &floor}) m->release();
@@ -172,10 +176,55 @@ struct Renderer::Impl {
     glUniform1f(glGetUniformLocation(program, name), float(x));
   }
 
-  void draw(const World& world) {
+  static void set(GLuint program, const char* name, const Eigen::Vector4d& v) {
+    glUniform4f(glGetUniformLocation(program, name), float(v.x()), float(v.y()), float(v.z()),
+                float(v.w()));
+  }
+
+  bool transparent() const { return backdrop == Backdrop::Transparent; }
+
+  // Where the viewer is, for the specular term: a point (w = 1) for a perspective camera, a
+  // direction towards it (w = 0) for an orthographic one, whose rays are all parallel.
+  Eigen::Vector4d eye(const World& world) const {
     const CameraSettings& cam = scene.camera;
+    if (cam.projection == Projection::Orthographic) {
+      const Vec3 d = (cam.position - camera_target(scene, world)).normalized();
+      return {d.x(), d.y(), d.z(), 0.0};
+    }
+    return {cam.position.x(), cam.position.y(), cam.position.z(), 1.0};
+  }
+
+  // Where the floor fades away. A perspective camera sees it shrink towards a horizon: it fades
+  // 12-40 m from the origin. An orthographic camera sees it at one scale however deep, so a
+  // floor there would fill the picture below the horizon with tiles flattened into stripes: it
+  // is a band along the view's depth instead, full within 0.3 ortho_height of what the camera
+  // looks at and gone at 1 ortho_height, the ground line of a textbook side view. (Looking
+  // straight down there is no depth along the floor: the perspective rule.)
+  struct FloorFade {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero(), axis = Eigen::Vector2d::Zero();
+    double start_m = 12.0, end_m = 40.0;
+  };
+  FloorFade floor_fade(const World& world) const {
+    const CameraSettings& cam = scene.camera;
+    FloorFade f;
+    if (cam.projection != Projection::Orthographic) return f;
+    const Vec3 target = camera_target(scene, world);
+    const Vec3 view = target - cam.position;
+    const Eigen::Vector2d along(view.x(), view.z());
+    if (along.norm() < 1e-3 * view.norm()) return f;
+    f.centre = Eigen::Vector2d(target.x(), target.z());
+    f.axis = along.normalized();
+    f.start_m = 0.3 * cam.ortho_height_m;
+    f.end_m = cam.ortho_height_m;
+    return f;
+  }
+
+  void draw(std::span<const Exposure> exposures) {
+    assert(!exposures.empty());
     // The camera maths live in camera.cpp, so `tumble study` measures pixels of this picture.
-    const Mat4 view_projection = camera_view_projection(scene, world);
+    // Several exposures are seen from where the camera is at the last (camera.follow).
+    const World& last = *exposures.back().world;
+    const Mat4 view_projection = camera_view_projection(scene, last);
     const Vec3 light = scene.light.direction.normalized();
 
     glBindFramebuffer(GL_FRAMEBUFFER, antialias == Antialias::Msaa   ? ms_fbo
@@ -183,7 +232,11 @@ struct Renderer::Impl {
                                                                      : fbo);
     glViewport(0, 0, width, height);
     const Vec3 bg = color_of(scene.render.background);
-    glClearColor(float(bg.x()), float(bg.y()), float(bg.z()), 1.0f);
+    // Transparent: premultiplied (0, 0, 0, 0) behind everything, whatever the sky's colour.
+    if (transparent())
+      glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    else
+      glClearColor(float(bg.x()), float(bg.y()), float(bg.z()), 1.0f);
     glClearStencil(0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
@@ -202,25 +255,32 @@ struct Renderer::Impl {
       set(floor_program, "u_tile_light", floor_tile_color(Vec3(0.80, 0.82, 0.85), light));
       set(floor_program, "u_tile_dark", floor_tile_color(Vec3(0.68, 0.71, 0.75), light));
       set(floor_program, "u_background", bg);
-      set(floor_program, "u_fade_start", 12.0);
-      set(floor_program, "u_fade_end", 40.0);
+      glUniform1i(glGetUniformLocation(floor_program, "u_transparent"), transparent() ? 1 : 0);
+      const FloorFade f = floor_fade(last);
+      glUniform2f(glGetUniformLocation(floor_program, "u_fade_centre"), float(f.centre.x()),
+                  float(f.centre.y()));
+      glUniform2f(glGetUniformLocation(floor_program, "u_fade_axis"), float(f.axis.x()),
+                  float(f.axis.y()));
+      set(floor_program, "u_fade_start", f.start_m);
+      set(floor_program, "u_fade_end", f.end_m);
       glBindVertexArray(floor.vao);
       glDrawElements(GL_TRIANGLES, floor.count, GL_UNSIGNED_INT, nullptr);
-      if (scene.light.shadows && light.y() < -1e-3) draw_shadows(world, view_projection, light, h);
+      if (scene.light.shadows && light.y() < -1e-3)
+        draw_shadows(exposures, view_projection, light, h);
     }
 
     glUseProgram(mesh_program);
     set(mesh_program, "u_view_projection", view_projection);
     set(mesh_program, "u_light_direction", light);
-    set(mesh_program, "u_camera_position", cam.position);
+    set(mesh_program, "u_eye", eye(last));
     set(mesh_program, "u_shadow", 0.0);
-    for (std::size_t i = 0; i < world.bodies().size(); ++i) {
-      const Mat4 model = model_matrix(world, i);
-      set(mesh_program, "u_model", model);
-      set(mesh_program, "u_normal_matrix", Mat3(model.block<3, 3>(0, 0).inverse().transpose()));
-      set(mesh_program, "u_color", color_of(scene.bodies[i].color));
-      draw_mesh(i);
-    }
+    set(mesh_program, "u_opacity", 1.0);
+    // Opaque bodies first, writing depth; then the translucent ones over them.
+    for (const Exposure& e : exposures)
+      if (e.opacity >= 1.0)
+        for (std::size_t i = 0; i < e.world->bodies().size(); ++i) draw_body(*e.world, i);
+    draw_translucent(exposures, view_projection);
+
     if (antialias == Antialias::Msaa) {
       glBindFramebuffer(GL_READ_FRAMEBUFFER, ms_fbo);
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
@@ -241,9 +301,10 @@ struct Renderer::Impl {
       glUniform1i(glGetUniformLocation(fxaa_program, "u_image"), 0);
       glUniform2f(glGetUniformLocation(fxaa_program, "u_pixel"), 1.0f / float(width),
                   1.0f / float(height));
+      glUniform1i(glGetUniformLocation(fxaa_program, "u_alpha"), transparent() ? 1 : 0);
       glBindVertexArray(empty_vao);
       glEnable(GL_SCISSOR_TEST);
-      for (const Eigen::Array4i& r : edge_rects(world, view_projection, light)) {
+      for (const Eigen::Array4i& r : edge_rects(exposures, view_projection, light)) {
         glScissor(r[0], r[1], r[2] - r[0], r[3] - r[1]);
         glDrawArrays(GL_TRIANGLES, 0, 3);
       }
@@ -252,9 +313,71 @@ struct Renderer::Impl {
     }
   }
 
+  // Body i of `world`, lit, with the mesh program's current opacity and blend state.
+  void draw_body(const World& world, std::size_t i) {
+    const Mat4 model = model_matrix(world, i);
+    set(mesh_program, "u_model", model);
+    set(mesh_program, "u_normal_matrix", Mat3(model.block<3, 3>(0, 0).inverse().transpose()));
+    set(mesh_program, "u_color", color_of(scene.bodies[i].color));
+    draw_mesh(i);
+  }
+
+  // The translucent bodies of every exposure, far to near by the depth of their centres, each
+  // blended (premultiplied "over") where it is the nearest surface: a depth-only pass first, so
+  // a ghost shows its front and not its back faces too (which a concave mesh would).
+  void draw_translucent(std::span<const Exposure> exposures, const Mat4& view_projection) {
+    struct Ghost {
+      double depth;
+      std::size_t exposure, body;
+    };
+    std::vector<Ghost> ghosts;
+    for (std::size_t e = 0; e < exposures.size(); ++e) {
+      if (exposures[e].opacity >= 1.0) continue;
+      const World& w = *exposures[e].world;
+      for (std::size_t i = 0; i < w.bodies().size(); ++i) {
+        const Eigen::Vector4d clip = view_projection * w.bodies()[i].state.x.homogeneous();
+        // NDC depth: monotonic in distance for both projections (w > 0 in front of the eye).
+        ghosts.push_back({clip.z() / std::max(clip.w(), 1e-9), e, i});
+      }
+    }
+    if (ghosts.empty()) return;
+    // Stable: equal depths keep exposure then body order, so the picture is deterministic.
+    std::stable_sort(ghosts.begin(), ghosts.end(),
+                     [](const Ghost& a, const Ghost& b) { return a.depth > b.depth; });
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied colours, alpha too
+    for (const Ghost& g : ghosts) {
+      const World& w = *exposures[g.exposure].world;
+      glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      glDepthFunc(GL_LESS);
+      draw_body(w, g.body);
+      glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+      glDepthFunc(GL_LEQUAL);
+      glDepthMask(GL_FALSE);
+      set(mesh_program, "u_opacity", std::clamp(exposures[g.exposure].opacity, 0.0, 1.0));
+      draw_body(w, g.body);
+      set(mesh_program, "u_opacity", 1.0);
+      glDepthMask(GL_TRUE);
+    }
+    glDepthFunc(GL_LESS);
+    glDisable(GL_BLEND);
+  }
+
   // Pixel rectangles (x0, y0, x1, y1; GL's bottom-up rows) that hold every edge of body i and
   // of its shadow: the projected corners of its bounding box, flattened onto the floor too,
   // grown by the FXAA reach. A corner behind the camera makes it the whole screen.
+  std::vector<Eigen::Array4i> edge_rects(std::span<const Exposure> exposures,
+                                         const Mat4& view_projection, const Vec3& light) const {
+    std::vector<Eigen::Array4i> rects;
+    for (const Exposure& e : exposures) {
+      std::vector<Eigen::Array4i> more = edge_rects(*e.world, view_projection, light);
+      // A body behind the camera: the whole screen, once.
+      if (more.size() == 1 && (more[0] == Eigen::Array4i(0, 0, width, height)).all()) return more;
+      rects.insert(rects.end(), more.begin(), more.end());
+    }
+    return rects;
+  }
+
   std::vector<Eigen::Array4i> edge_rects(const World& world, const Mat4& view_projection,
                                          const Vec3& light) const {
     std::vector<Eigen::Array4i> rects;
@@ -318,28 +441,41 @@ struct Renderer::Impl {
     glDrawElements(GL_TRIANGLES, mesh.count, GL_UNSIGNED_INT, nullptr);
   }
 
-  // Planar shadows: each body flattened onto the plane y = h along the light, drawn dark and
-  // translucent. The stencil lets each pixel darken once where shadows overlap (a box's front
-  // and back faces land on the same pixels). Exact for a plane, one cheap extra pass.
-  void draw_shadows(const World& world, const Mat4& view_projection, const Vec3& light, double h) {
+  // Planar shadows: each body flattened onto the plane y = h along the light, darkening the
+  // floor under it. The stencil lets each pixel darken once where shadows overlap (a box's front
+  // and back faces land on the same pixels, and so do the shadows of strobe poses that overlap).
+  // The exposures are drawn most opaque first, so a pixel takes the darkest shadow over it: a
+  // pile of faint poses never blackens the floor. Exact for a plane, one cheap extra pass.
+  void draw_shadows(std::span<const Exposure> exposures, const Mat4& view_projection,
+                    const Vec3& light, double h) {
     // p' = p − ((p_y − h) / L_y) L, as a matrix acting on homogeneous points.
     Mat4 flatten = Mat4::Identity();
     flatten.block<3, 1>(0, 1) -= light / light.y();
     flatten.block<3, 1>(0, 3) += light * (h / light.y());
     glUseProgram(mesh_program);
     set(mesh_program, "u_view_projection", view_projection);
-    set(mesh_program, "u_shadow", 0.32);
     set(mesh_program, "u_normal_matrix", Mat3(Mat3::Identity()));
     glDisable(GL_DEPTH_TEST);  // on the floor nothing but bodies (drawn later) can cover them
     glDisable(GL_CULL_FACE);
     glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    // dst · (1 − s), alpha kept: a shadow darkens the floor that is there and is as transparent
+    // as the floor (with a transparent backdrop, the floor's fade takes its shadow along).
+    glBlendFuncSeparate(GL_ZERO, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 0, 0xff);
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-    for (std::size_t i = 0; i < world.bodies().size(); ++i) {
-      set(mesh_program, "u_model", Mat4(flatten * model_matrix(world, i)));
-      draw_mesh(i);
+    std::vector<std::size_t> order(exposures.size());
+    for (std::size_t e = 0; e < order.size(); ++e) order[e] = e;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return exposures[a].opacity > exposures[b].opacity;
+    });
+    for (const std::size_t e : order) {
+      set(mesh_program, "u_shadow", 0.32 * std::clamp(exposures[e].opacity, 0.0, 1.0));
+      const World& world = *exposures[e].world;
+      for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+        set(mesh_program, "u_model", Mat4(flatten * model_matrix(world, i)));
+        draw_mesh(i);
+      }
     }
     glDisable(GL_STENCIL_TEST);
     glDisable(GL_BLEND);
@@ -412,8 +548,9 @@ struct Renderer::Impl {
   }
 };
 
-Renderer::Renderer(const Scene& scene, Readback readback, const SceneModels* models)
-    : impl_(std::make_unique<Impl>(scene, models)) {
+Renderer::Renderer(const Scene& scene, Readback readback, const SceneModels* models,
+                   Backdrop backdrop)
+    : impl_(std::make_unique<Impl>(scene, models, backdrop)) {
   impl_->build();
   impl_->setup_readback(readback);
 }
@@ -428,7 +565,11 @@ bool Renderer::async_readback() const {
 }
 Renderer::~Renderer() = default;
 void Renderer::draw(const World& world) {
-  impl_->draw(world);
+  const Exposure one{&world, 1.0};
+  impl_->draw(std::span<const Exposure>(&one, 1));
+}
+void Renderer::draw(std::span<const Exposure> exposures) {
+  impl_->draw(exposures);
 }
 void Renderer::read_rgba(std::vector<std::uint8_t>& rgba) {
   impl_->read_rgba(rgba);
@@ -445,11 +586,16 @@ int Renderer::msaa_samples() const {
 Antialias Renderer::antialias() const {
   return impl_->antialias;
 }
+Backdrop Renderer::backdrop() const {
+  return impl_->backdrop;
+}
 
 Image Renderer::read_image() {
   std::vector<std::uint8_t> rgba;
   read_rgba(rgba);
-  return image_from_gl_rgba(rgba.data(), width(), height());
+  return backdrop() == Backdrop::Transparent
+             ? straight_image_from_gl_rgba(rgba.data(), width(), height())
+             : image_from_gl_rgba(rgba.data(), width(), height());
 }
 
 }  // namespace tumble

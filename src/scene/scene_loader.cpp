@@ -96,12 +96,23 @@ RenderSettings read_render(const toml::table& table, const std::string& file) {
 
 CameraSettings read_camera(const toml::table& table, const std::string& file,
                            const std::vector<BodySpec>& bodies) {
-  const TableReader r(table, "[camera]", file, {"position", "target", "up", "fov_deg", "follow"});
+  const TableReader r(
+      table, "[camera]", file,
+      {"position", "target", "up", "fov_deg", "projection", "ortho_height", "follow"});
   CameraSettings c;
   c.position = r.vec3("position").value_or(c.position);
   c.target = r.vec3("target").value_or(c.target);
   c.up = r.vec3("up").value_or(c.up);
   c.fov_deg = r.number("fov_deg", {0.0, 180.0, true, true}).value_or(c.fov_deg);
+  if (const auto i = r.choice("projection", kProjectionNames))
+    c.projection = static_cast<Projection>(*i);  // kProjectionNames is in enum order
+  c.ortho_height_m = r.number("ortho_height", kPositive).value_or(c.ortho_height_m);
+  // Each projection has its own size key; the other one's would be silently ignored, and a lone
+  // ortho_height most likely means a forgotten projection = "orthographic".
+  if (c.projection == Projection::Orthographic)
+    r.forbid("fov_deg", "applies only to projection = \"perspective\" (use ortho_height)");
+  else
+    r.forbid("ortho_height", "applies only to projection = \"orthographic\"");
 
   // Blame the first of these keys the file gives: it is what the user wrote.
   const auto blame = [&](std::initializer_list<std::string_view> keys) {

@@ -5,6 +5,7 @@
 
 extern "C" {
 #include <libavcodec/avcodec.h>
+#include <libavfilter/avfilter.h>
 #include <libavformat/avformat.h>
 #include <libavutil/buffer.h>
 #include <libavutil/dict.h>
@@ -41,6 +42,15 @@ struct FormatContextFree {
   }
 };
 
+/// A filter graph frees every filter in it.
+struct FilterGraphFree {
+  void operator()(AVFilterGraph* g) const { avfilter_graph_free(&g); }
+};
+/// The open ends of a graph description being parsed.
+struct FilterInOutFree {
+  void operator()(AVFilterInOut* io) const { avfilter_inout_free(&io); }
+};
+
 /// An opened input (demuxer) is closed with avformat_close_input.
 struct InputFormatClose {
   void operator()(AVFormatContext* f) const { avformat_close_input(&f); }
@@ -53,6 +63,8 @@ using SwsPtr = std::unique_ptr<SwsContext, SwsFree>;
 using BufferPtr = std::unique_ptr<AVBufferRef, BufferUnref>;
 using FormatContextPtr = std::unique_ptr<AVFormatContext, FormatContextFree>;
 using InputFormatPtr = std::unique_ptr<AVFormatContext, InputFormatClose>;
+using FilterGraphPtr = std::unique_ptr<AVFilterGraph, FilterGraphFree>;
+using FilterInOutPtr = std::unique_ptr<AVFilterInOut, FilterInOutFree>;
 
 /// Routes FFmpeg's log away from stderr (tumble's stderr carries only its own messages). Errors a
 /// codec logs while it is being opened (its `opaque` pointing at a std::string) are kept there, as

@@ -10,40 +10,13 @@ extern "C" {
 
 #include "ffmpeg_handles.hpp"
 #include "h264_encoder.hpp"
+#include "partial_file.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Beside the final file, so the rename in finish() never crosses file systems; a dot-name, as
-// AtomicFile's, keeps a half-written clip out of globs like *.mp4.
-fs::path temporary_path_for(const fs::path& final_path) {
-  // Built by appending: GCC 12 misreports `"." + string` as an overlapping memcpy (-Wrestrict).
-  std::string name = ".";
-  name.append(final_path.filename().string());
-  name.append(".partial");
-  return final_path.parent_path() / name;
-}
-
-// Removes a file when destroyed, unless released: the half-written clip of a writer that never
-// reached finish().
-class RemoveUnlessReleased {
- public:
-  explicit RemoveUnlessReleased(fs::path path) : path_(std::move(path)) {}
-  ~RemoveUnlessReleased() {
-    if (path_.empty()) return;
-    std::error_code ignored;
-    fs::remove(path_, ignored);
-  }
-  RemoveUnlessReleased(const RemoveUnlessReleased&) = delete;
-  RemoveUnlessReleased& operator=(const RemoveUnlessReleased&) = delete;
-  void release() { path_.clear(); }
-
- private:
-  fs::path path_;
-};
 
 [[noreturn]] void bad_settings(const std::string& message) {
   throw Error(ErrorKind::BadInput, message);
@@ -98,7 +71,7 @@ struct Mp4Writer::Impl {
 Mp4Writer::Impl::Impl(const fs::path& path, const Mp4Settings& s)
     : settings(s),
       final_path(path),
-      temporary_path(temporary_path_for(path)),
+      temporary_path(partial_path_for(path)),
       temporary_file(temporary_path) {
   check(settings);
   // The "file:" protocol prefix keeps a ':' in a folder name from being read as a protocol. The
@@ -230,11 +203,7 @@ void Mp4Writer::finish() {
   if (result < 0) m.fail_writing("MP4 trailer", result);
   result = avio_closep(&m.muxer->pb);
   if (result < 0) m.fail_writing("close failed (disk full?)", result);
-  std::error_code ec;
-  fs::rename(m.temporary_path, m.final_path, ec);
-  if (ec)
-    throw Error(ErrorKind::Environment,
-                "cannot write \"" + m.final_path.string() + "\": " + ec.message());
+  rename_into_place(m.temporary_path, m.final_path);
   m.temporary_file.release();
   m.finished = true;
 }

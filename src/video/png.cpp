@@ -91,19 +91,30 @@ void write_to_stream(png_structp png, png_bytep data, size_t size) {
 void flush_nothing(png_structp) {}
 
 // Encodes `image` into `out`. Returns false, with libpng's message in the PngFailure, on error.
-bool encode(png_structp png, png_infop info, const Image* image, std::ostream* out) {
+bool encode(png_structp png, png_infop info, const Image* image, const PngOptions* options,
+            std::ostream* out) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_set_write_fn(png, out, write_to_stream, flush_nothing);
+  const bool rgba = options->alpha && image->channels == 4;
   png_set_IHDR(png, info, static_cast<png_uint_32>(image->width),
-               static_cast<png_uint_32>(image->height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               static_cast<png_uint_32>(image->height), 8,
+               rgba ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  // Level 1 and no row filter: 3-4 ms per 720p frame against 16-18 ms for the default adaptive
-  // filter (PLATFORM.md); the files are larger, which frames on their way to a video can afford.
-  png_set_compression_level(png, 1);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+  if (options->packing == PngOptions::Packing::Fast) {
+    // Level 1 and no row filter: 3-4 ms per 720p frame against 16-18 ms for the default
+    // adaptive filter (PLATFORM.md); the files are larger, which frames on their way to a video
+    // can afford.
+    png_set_compression_level(png, 1);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+  } else {
+    // A figure written once: every filter tried per row, the strongest deflate.
+    png_set_compression_level(png, 9);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_ALL_FILTERS);
+  }
   png_write_info(png, info);
-  // RGBA rows: libpng drops the fourth byte of each pixel itself, so no converted copy is made.
-  if (image->channels == 4) png_set_filler(png, 0, PNG_FILLER_AFTER);
+  // RGBA rows written as RGB: libpng drops the fourth byte of each pixel itself, so no converted
+  // copy is made.
+  if (image->channels == 4 && !rgba) png_set_filler(png, 0, PNG_FILLER_AFTER);
   for (int y = 0; y < image->height; ++y) png_write_row(png, image->row(y));
   png_write_end(png, nullptr);
   return true;
@@ -181,7 +192,7 @@ constexpr size_t kMaxDecodedBytes = size_t{1} << 31;
 
 }  // namespace
 
-void write_png(const fs::path& path, const Image& image) {
+void write_png(const fs::path& path, const Image& image, const PngOptions& options) {
   assert(image.width > 0 && image.height > 0);
   assert(image.channels == 3 || image.channels == 4);
   assert(image.pixels.size() == image.stride() * static_cast<size_t>(image.height));
@@ -189,7 +200,7 @@ void write_png(const fs::path& path, const Image& image) {
   PngFailure failure;
   PngWriteStructs png(&failure);
   if (!png.ok()) throw Error(ErrorKind::Environment, "libpng: out of memory");
-  if (!encode(png.png(), png.info(), &image, &file.stream()))
+  if (!encode(png.png(), png.info(), &image, &options, &file.stream()))
     throw Error(ErrorKind::Environment,
                 "cannot write \"" + path.string() + "\": libpng: " + failure.message);
   file.commit();

@@ -18,9 +18,9 @@ std::string mesh_scene(const std::string& mesh_line, const std::string& extra = 
 
 TEST(Meshes, ExampleSceneSimulatesWithMassPropertiesInRunJson) {
   const TestDir dir;
-  const RunResult r = run_tumble(
-      {"simulate", (source_dir() / "assets/scenes/meshes.toml").string(), "--out", "o"},
-      dir.path());
+  const RunResult r =
+      run_tumble({"simulate", (source_dir() / "assets/scenes/meshes.toml").string(), "--out", "o"},
+                 dir.path());
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_EQ(r.err, "");  // no diagnostics: the example runs clean
   const nlohmann::json j = read_json(dir / "o/run.json");
@@ -46,8 +46,8 @@ TEST(Meshes, PathIsRelativeToTheSceneFileNotTheWorkingFolder) {
   fs::create_directories(dir / "scenes/models");
   fs::copy_file(source_dir() / "assets/meshes/cube.stl", dir / "scenes/models/cube.stl");
   write_scene(dir / "scenes", "s.toml", mesh_scene("mesh = \"models/cube.stl\""));
-  const RunResult r = run_tumble({"simulate", "scenes/s.toml", "--out", "o", "--duration", "0.5"},
-                                 dir.path());
+  const RunResult r =
+      run_tumble({"simulate", "scenes/s.toml", "--out", "o", "--duration", "0.5"}, dir.path());
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_NEAR(read_json(dir / "o/run.json")["bodies"][0]["mass_kg"].get<double>(), 1000.0, 1e-9);
 }
@@ -91,10 +91,10 @@ TEST(Meshes, MissingOrBrokenModelIsExit2NamingTheFileAndTheBody) {
   EXPECT_EQ(open.exit_code, 2) << describe(open);
   EXPECT_NE(open.err.find("not closed: 4 open edges"), std::string::npos) << open.err;
   // repair = "hull" makes the same model a body: its convex hull.
-  write_scene(dir.path(), "hull.toml",
-              mesh_scene("mesh = \"" +
-                             (source_dir() / "tests/unit/mesh/data/open_box.obj").string() + "\"",
-                         "repair = \"hull\"\n"));
+  write_scene(
+      dir.path(), "hull.toml",
+      mesh_scene("mesh = \"" + (source_dir() / "tests/unit/mesh/data/open_box.obj").string() + "\"",
+                 "repair = \"hull\"\n"));
   const RunResult hull =
       run_tumble({"simulate", "hull.toml", "--out", "c", "--duration", "0.5"}, dir.path());
   EXPECT_EQ(hull.exit_code, 0) << describe(hull);

@@ -13,6 +13,7 @@
 #include <regex>
 #include <utility>
 
+#include "figures_formats.hpp"
 #include "run_tumble.hpp"
 #include "trajectory_csv.hpp"
 
@@ -27,25 +28,6 @@ const std::vector<std::string> kSmall = {"--size", "160x120"};
 std::vector<std::string> args(std::vector<std::string> head, const std::vector<std::string>& tail) {
   head.insert(head.end(), tail.begin(), tail.end());
   return head;
-}
-
-/// `ffprobe … -of default=nw=1` of the first video stream: key → value ("codec_name" → "h264").
-/// The format's duration arrives under "duration" (the stream section asks for no duration).
-std::map<std::string, std::string> probe(const fs::path& video) {
-  const RunResult r =
-      run_program("ffprobe",
-                  {"-v", "error", "-count_frames", "-select_streams", "v:0", "-show_entries",
-                   "stream=codec_name,pix_fmt,nb_read_frames,width,height", "-show_entries",
-                   "format=duration", "-of", "default=nw=1", fs::absolute(video).string()},
-                  "/");
-  std::map<std::string, std::string> values;
-  EXPECT_EQ(r.exit_code, 0) << describe(r);
-  EXPECT_EQ(r.err, "") << "ffprobe reports errors in " << video.string();
-  for (const std::string& line : split(r.out, '\n')) {
-    const std::size_t eq = line.find('=');
-    if (eq != std::string::npos) values[line.substr(0, eq)] = line.substr(eq + 1);
-  }
-  return values;
 }
 
 /// The types of the top-level boxes of an MP4, in file order ("ftyp", "moov", "mdat", …); empty
@@ -82,50 +64,15 @@ std::ptrdiff_t index_of(const std::vector<std::string>& v, const std::string& x)
   return it == v.end() ? -1 : it - v.begin();
 }
 
-struct PngHeader {
-  bool valid = false;
-  std::uint32_t width = 0, height = 0;
-  int bit_depth = 0, color_type = 0;
-};
-
-/// The PNG signature and IHDR chunk of a file: size, bit depth, colour type (2 = RGB).
-PngHeader png_header(const fs::path& path) {
-  const std::string d = read_file(path);
-  PngHeader h;
-  if (d.size() < 33 || d.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || d.compare(12, 4, "IHDR") != 0)
-    return h;
-  auto u32 = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    for (std::size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(d[at + i]);
-    return v;
-  };
-  h.valid = true;
-  h.width = u32(16);
-  h.height = u32(20);
-  h.bit_depth = static_cast<unsigned char>(d[24]);
-  h.color_type = static_cast<unsigned char>(d[25]);
-  return h;
-}
-
 void expect_png(const fs::path& path, std::uint32_t width, std::uint32_t height) {
   SCOPED_TRACE(path.string());
   ASSERT_TRUE(fs::is_regular_file(path));
-  const PngHeader h = png_header(path);
+  const PngInfo h = png_info(path);
   ASSERT_TRUE(h.valid) << "not a PNG";
   EXPECT_EQ(h.width, width);
   EXPECT_EQ(h.height, height);
   EXPECT_EQ(h.bit_depth, 8);
   EXPECT_EQ(h.color_type, 2) << "SPEC: 8-bit RGB";
-}
-
-/// The file names in a folder, sorted.
-std::vector<std::string> names_in(const fs::path& dir) {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
 }
 
 /// `tumble info`'s "Key: value" lines.

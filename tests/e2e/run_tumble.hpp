@@ -239,6 +239,16 @@ inline std::string system_sha256(const fs::path& file) {
   return r.out.substr(0, 64);
 }
 
+/// The file names in a folder, sorted (empty when it cannot be read).
+inline std::vector<std::string> names_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 /// Every example scene in assets/scenes, sorted by name.
 inline std::vector<fs::path> example_scenes() {
   std::vector<fs::path> scenes;
