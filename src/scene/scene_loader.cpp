@@ -107,12 +107,9 @@ CameraSettings read_camera(const toml::table& table, const std::string& file,
   if (const auto i = r.choice("projection", kProjectionNames))
     c.projection = static_cast<Projection>(*i);  // kProjectionNames is in enum order
   c.ortho_height_m = r.number("ortho_height", kPositive).value_or(c.ortho_height_m);
-  // Each projection has its own size key; the other one's would be silently ignored, and a lone
-  // ortho_height most likely means a forgotten projection = "orthographic".
-  if (c.projection == Projection::Orthographic)
-    r.forbid("fov_deg", "applies only to projection = \"perspective\" (use ortho_height)");
-  else
-    r.forbid("ortho_height", "applies only to projection = \"orthographic\"");
+  // Each projection uses its own size key and ignores the other's (both still checked): SPEC's
+  // [camera] table gives fov_deg and ortho_height together, so a scene may keep both and switch
+  // the projection alone.
 
   // Blame the first of these keys the file gives: it is what the user wrote.
   const auto blame = [&](std::initializer_list<std::string_view> keys) {

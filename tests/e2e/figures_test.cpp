@@ -292,16 +292,25 @@ TEST(Orthographic, SceneKeysAreChecked) {
        "bad.toml:12:16: ortho_height in [camera] must be > 0, got 0"},
       {"projection = \"orthographic\"\northo_height = -2\n",
        "bad.toml:12:16: ortho_height in [camera] must be > 0, got -2"},
-      {"ortho_height = 3.0\n",
-       "bad.toml:11:16: ortho_height in [camera] applies only to projection = \"orthographic\""},
-      {"projection = \"orthographic\"\nfov_deg = 30.0\n",
-       "bad.toml:12:11: fov_deg in [camera] applies only to projection = \"perspective\""},
+      {"ortho_height = 0.0\n", "bad.toml:11:16: ortho_height in [camera] must be > 0, got 0"},
+      {"projection = \"orthographic\"\nfov_deg = 190.0\n",
+       "bad.toml:12:11: fov_deg in [camera] must be in (0, 180), got 190"},
       {"projection = \"fisheye\"\n",
        "bad.toml:11:14: unknown projection \"fisheye\" (expected one of: perspective, "
        "orthographic)"},
       {"projecton = \"orthographic\"\n",
        "bad.toml:11:1: unknown key \"projecton\" in [camera] (did you mean \"projection\"?)"},
   };
+  // SPEC's [camera] table gives fov_deg and ortho_height together: either projection takes both.
+  for (const char* projection : {"perspective", "orthographic"}) {
+    write_scene(dir.path(), "both.toml",
+                std::string(kDropScene) + "[camera]\nprojection = \"" + projection +
+                    "\"\nfov_deg = 45.0\northo_height = 4.0\n");
+    const RunResult ok = run_tumble(
+        {"render", "both.toml", "--no-mp4", "--still", "0", "--size", "64x48", "--out", "both"},
+        dir.path());
+    EXPECT_EQ(ok.exit_code, 0) << describe(ok);
+  }
   for (const auto& [camera, message] : cases) {
     SCOPED_TRACE(camera);
     write_scene(dir.path(), "bad.toml", std::string(kDropScene) + "[camera]\n" + camera);
