@@ -44,6 +44,10 @@ struct BodyDef {
   Vec3 angular_velocity = Vec3::Zero();  ///< world frame, rad/s
 };
 
+/// True when `a` and `b` put a body at bitwise the same place and orientation (x, q and R):
+/// whatever is drawn of one is drawn the same of the other. Momenta are not compared.
+bool same_pose(const BodyState& a, const BodyState& b);
+
 /// Principal moments of a solid box of full edge lengths `size`: m/12 (b² + c²), ...
 Vec3 box_inertia(double mass_kg, const Vec3& size);
 /// The 8 corners of a box of full edge lengths `size`, centred on the origin.

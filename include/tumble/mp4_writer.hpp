@@ -39,6 +39,9 @@ class Mp4Writer {
     add_frame(image.pixels.data(), image.channels, static_cast<std::ptrdiff_t>(image.stride()),
               false);
   }
+  /// Encodes the last added frame's picture once more, as the next frame (a clip whose image
+  /// did not change): no conversion, the same bytes as adding the same pixels again.
+  void repeat_frame();
   /// Flushes the encoder, writes the trailer (moov moved to the front) and renames into place.
   void finish();
 

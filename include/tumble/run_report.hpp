@@ -41,6 +41,8 @@ struct RunReport {
   const Scene* scene = nullptr;
   long steps = 0;
   long samples = 0;  ///< trajectory samples or frames
+  /// render: clip frames not drawn again because nothing in them moved (the previous image).
+  std::optional<long> frames_reused;
   double sample_rate_hz = 0.0;
   bool every_step = false;
   std::string gl_vendor, gl_renderer, encoder;  ///< empty when nothing was rendered/encoded

@@ -117,6 +117,11 @@ struct StepStats {
   double largest_step_s = 0.0;
 };
 
+class World;
+/// True when every body of `a` and `b` (worlds of one WorldDef) is in the same pose (same_pose):
+/// a picture of one is the picture of the other.
+bool same_poses(const World& a, const World& b);
+
 class World {
  public:
   explicit World(const WorldDef& def);

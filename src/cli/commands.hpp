@@ -71,6 +71,7 @@ struct RenderOptions {
   bool transparent = false;   // PNG, GIF and WebP outputs with a transparent background
   bool gif = false;           // clip.gif
   bool webp = false;          // clip.webp
+  bool draw_every_frame = false;  // hidden: no reuse of unchanged frames (tests compare)
 };
 void add_render_command(CLI::App& app, RenderOptions& o);
 int run_render(const RenderOptions& o);

@@ -64,22 +64,27 @@ void FramePipeline::run_all(Progress& progress) {
   // that are recycled.
   struct Job {
     long frame;
-    std::vector<std::uint8_t> rgba;
+    std::vector<std::uint8_t> rgba;  // empty for a repeat
+    bool repeat = false;             // the same picture as the frame before
   };
   BoundedQueue<Job> queue(3);
   BoundedQueue<std::vector<std::uint8_t>> spare(4);
   std::exception_ptr worker_error;
   std::thread worker([&] {
     try {
+      std::vector<std::uint8_t> shown;  // the last drawn frame's pixels, kept for its repeats
       while (auto job = queue.pop()) {
-        const FrameView view{
-            job->frame, double(job->frame) / fps_, job->rgba.data(), width, height, premultiplied};
+        if (!job->repeat) {
+          if (!shown.empty()) spare.push(std::move(shown));
+          shown = std::move(job->rgba);
+        }
+        const FrameView view{job->frame, double(job->frame) / fps_, shown.data(), width,
+                             height,     premultiplied,            job->repeat};
         for (std::size_t i = 0; i < clip_sinks_.size(); ++i) {
           const auto t0 = Clock::now();
           clip_sinks_[i]->accept(view);
           clip_seconds_[i] += seconds_since(t0);
         }
-        spare.push(std::move(job->rgba));
       }
     } catch (...) {
       worker_error = std::current_exception();
@@ -111,14 +116,20 @@ void FramePipeline::run_all(Progress& progress) {
 
   long next_frame = 0;
   std::size_t next_due = 0;
+  int buffers_made = 0;
+  std::optional<World> last_drawn;  // the poses of the last clip frame drawn
   // Frame k is read back while frame k+1 is drawn (asynchronous on GPUs): it is collected, in
   // order, after the next frame's readback has begun, or at the end.
   std::optional<long> pending;
   auto collect_pending = [&]() -> bool {
     const auto t0 = Clock::now();
-    // A recycled buffer: after the first few frames, no allocation.
+    // A recycled buffer: after the first few, no allocation. Four are enough: three in the
+    // queue and the one the encoder thread keeps for repeats.
     std::vector<std::uint8_t> buffer;
-    if (frames_done_ >= 4) buffer = spare.pop().value_or(std::vector<std::uint8_t>{});
+    if (buffers_made >= 4)
+      buffer = spare.pop().value_or(std::vector<std::uint8_t>{});
+    else
+      ++buffers_made;
     renderer_.finish_readback(buffer);
     readback_s_ += seconds_since(t0);
     const bool pushed = queue.push(Job{*pending, std::move(buffer)});  // false: the worker failed
@@ -141,11 +152,22 @@ void FramePipeline::run_all(Progress& progress) {
       continue;
     }
     auto t0 = Clock::now();
-    const World snapshot = sampler_.at(frame_t);
+    World snapshot = sampler_.at(frame_t);
     simulate_s_ += seconds_since(t0);
+    if (!draw_every_frame_ && last_drawn && same_poses(*last_drawn, snapshot)) {
+      // Nothing moved since the last drawn frame, and the camera sees only the bodies' poses
+      // (follow included): drawing again would give the same pixels (the renderer is a pure
+      // function of the poses), so the encoder gets the previous ones again.
+      if (pending && !collect_pending()) break;
+      if (!queue.push(Job{next_frame++, {}, true})) break;
+      progress.update(++frames_done_);
+      ++frames_reused_;
+      continue;
+    }
     t0 = Clock::now();
     renderer_.draw(snapshot);
     render_s_ += seconds_since(t0);
+    last_drawn = std::move(snapshot);
     t0 = Clock::now();
     renderer_.begin_readback();
     readback_s_ += seconds_since(t0);
@@ -173,6 +195,7 @@ void FramePipeline::report(RunReport& report) const {
   report.times.simulate_s = simulate_s_;
   report.times.render_s = render_s_;
   report.times.readback_s = readback_s_;
+  if (clip_frames_ > 0) report.frames_reused = frames_reused_;
   for (std::size_t i = 0; i < clip_sinks_.size(); ++i)
     clip_sinks_[i]->report(report, clip_seconds_[i]);
   for (const PendingPicture& p : pictures_) p.picture.sink->report(report, p.seconds);

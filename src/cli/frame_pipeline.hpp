@@ -9,6 +9,10 @@
 // llvmpipe rendering already uses every core and the queue costs nothing. Pictures (stills, the
 // strobe) are drawn here when their last exposure is reached; the sampler only goes forward, so
 // frames and exposures are merged in time order on the fly (an exposure at a frame's time first).
+// A clip frame whose bodies are all in the same pose (bit for bit) as in the last drawn frame is
+// not drawn or read back: the encoder thread hands its sinks the previous pixels again, marked as
+// a repeat (the MP4 then skips conversion too). The renderer is a pure function of the poses, so
+// the output is the same bytes as drawing every frame (tested with --draw-every-frame).
 
 #include <vector>
 
@@ -34,6 +38,9 @@ class FramePipeline {
   void add_clip_sink(SinkPtr sink);
   /// A picture, drawn once all its exposures are sampled.
   void add_picture(Picture picture);
+  /// Draws every clip frame, even one whose bodies did not move since the frame before (by
+  /// default that frame is the previous image again, not drawn: the same bytes, less work).
+  void draw_every_frame(bool on) { draw_every_frame_ = on; }
 
   /// Draws everything in time order, then finishes every sink (clip sinks first). On any
   /// failure or interruption the encoder thread is stopped, every sink aborted (nothing
@@ -47,7 +54,9 @@ class FramePipeline {
   /// The world as the run stepped it (contact statistics) and its sampler (later times).
   World& world() { return world_; }
   Sampler& sampler() { return sampler_; }
-  long frames_drawn() const { return frames_done_; }
+  long frames_done() const { return frames_done_; }
+  /// Clip frames handed on as the previous image because nothing moved.
+  long frames_reused() const { return frames_reused_; }
 
  private:
   struct PendingPicture {
@@ -69,6 +78,8 @@ class FramePipeline {
   std::vector<PendingPicture> pictures_;
   double simulate_s_ = 0.0, render_s_ = 0.0, readback_s_ = 0.0;
   long frames_done_ = 0;
+  long frames_reused_ = 0;
+  bool draw_every_frame_ = false;
   std::vector<std::uint8_t> picture_pixels_;
 };
 

@@ -21,6 +21,9 @@ struct FrameView {
   const std::uint8_t* rgba = nullptr;  ///< width·height RGBA pixels, rows bottom-up
   int width = 0, height = 0;
   bool premultiplied = false;  ///< transparent backdrop: premultiplied alpha; else alpha 255
+  /// Clip frames: the same pixels as the previous frame (nothing moved, so it was not drawn
+  /// again); a sink may reuse what it made of them. `rgba` is valid either way.
+  bool repeat = false;
 };
 
 class FrameSink {

@@ -9,6 +9,9 @@
 
 int main(int argc, char** argv) {
   using namespace tumble;
+  // First of all: a Ctrl-C or SIGTERM that comes while the command line is still being read
+  // (a slow start on a busy machine) must end the run cleanly too, not kill it.
+  cli::install_interrupt_handlers();
   CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};
   app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
   app.require_subcommand(1);
@@ -36,7 +39,6 @@ int main(int argc, char** argv) {
     return static_cast<int>(ErrorKind::BadInput);
   }
 
-  cli::install_interrupt_handlers();
   try {
     if (app.got_subcommand("render")) return cli::run_render(render);
     if (app.got_subcommand("simulate")) return cli::run_simulate(simulate);

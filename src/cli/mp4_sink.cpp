@@ -16,6 +16,10 @@ class Mp4Sink final : public FrameSink {
   }
 
   void accept(const FrameView& f) override {
+    if (f.repeat) {  // the same picture: skip compositing and conversion
+      writer_->repeat_frame();
+      return;
+    }
     const std::uint8_t* pixels = f.rgba;
     if (f.premultiplied) {
       // A figure's transparent frames, shown on the sky for the clip (an MP4 has no alpha):

@@ -77,6 +77,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                 "MP4 keeps the sky)");
   cmd->add_flag("--gif", o.gif, "Also write clip.gif (looping, one palette for the clip)");
   cmd->add_flag("--webp", o.webp, "Also write clip.webp (animated WebP, looping)");
+  // Hidden (no group): the reference the tests compare skipping of unchanged frames against.
+  cmd->add_flag("--draw-every-frame", o.draw_every_frame,
+                "Draw every clip frame, even when nothing moved (the same output, slower)")
+      ->group("");
 }
 
 int run_render(const RenderOptions& o) {
@@ -137,6 +141,7 @@ int run_render(const RenderOptions& o) {
   // The sinks: every clip frame to the clip sinks; each still and the strobe is a picture.
   const long clip_frames = want_clip ? frames : 0;
   FramePipeline pipeline(def, renderer, fps, clip_frames);
+  pipeline.draw_every_frame(o.draw_every_frame);
   if (want_mp4)
     pipeline.add_clip_sink(make_mp4_sink(dir / "clip.mp4", {width, height, fps, o.crf, o.encoder},
                                          scene.render.background));

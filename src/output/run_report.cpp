@@ -84,6 +84,7 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
                  {"samples", r.samples},
                  {"sample_rate_hz", r.sample_rate_hz},
                  {"every_step", r.every_step}};
+  if (r.frames_reused) j["counts"]["frames_reused"] = *r.frames_reused;
   if (r.world && r.world->def().integrator == Integrator::Adaptive) {
     const StepStats& st = r.world->step_stats();
     j["adaptive"] = {{"tolerance", r.world->def().tolerance},

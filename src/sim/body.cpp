@@ -1,6 +1,7 @@
 #include "tumble/body.hpp"
 
 #include <cassert>
+#include <cstring>
 
 namespace tumble {
 
@@ -49,6 +50,18 @@ RigidBody::RigidBody(const BodyDef& def)
 Mat3 RigidBody::inverse_inertia_world() const {
   if (particle_) return Mat3::Zero();
   return state.R * inverse_inertia_body_.asDiagonal() * state.R.transpose();
+}
+
+namespace {
+// Bitwise, not ==: -0 and +0 are different inputs to a renderer, and no pose is ever NaN.
+template <typename M>
+bool same_bits(const M& a, const M& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(double) * std::size_t(a.size())) == 0;
+}
+}  // namespace
+
+bool same_pose(const BodyState& a, const BodyState& b) {
+  return same_bits(a.x, b.x) && same_bits(a.q.coeffs(), b.q.coeffs()) && same_bits(a.R, b.R);
 }
 
 double RigidBody::energy(const Vec3& gravity) const {

@@ -92,6 +92,15 @@ World::World(const WorldDef& def) : def_(def) {
   controllers_.resize(bodies_.size());
 }
 
+bool same_poses(const World& a, const World& b) {
+  const auto& ba = a.bodies();
+  const auto& bb = b.bodies();
+  if (ba.size() != bb.size()) return false;
+  for (std::size_t i = 0; i < ba.size(); ++i)
+    if (!same_pose(ba[i].state, bb[i].state)) return false;
+  return true;
+}
+
 double World::total_energy() const {
   double e = 0.0;
   for (const RigidBody& b : bodies_) e += b.energy(def_.gravity);

@@ -49,6 +49,8 @@ struct Mp4Writer::Impl {
   }
   void use_input_format(AVPixelFormat format);
   void encode(const AVFrame* frame);
+  // Sends `picture` (converted already) as frame number `frames`.
+  void submit_picture();
 
   Mp4Settings settings;
   fs::path final_path;
@@ -179,6 +181,21 @@ void Mp4Writer::add_frame(const std::uint8_t* pixels, int channels, std::ptrdiff
   const int row_step = static_cast<int>(bottom_up ? -stride : stride);
   sws_scale(m.converter.get(), &first_row, &row_step, 0, m.settings.height, m.picture->data,
             m.picture->linesize);
+  m.submit_picture();
+}
+
+void Mp4Writer::repeat_frame() {
+  Impl& m = *impl_;
+  assert(!m.finished && m.frames > 0);
+  // A copy if the encoder still holds the picture; av_frame_make_writable keeps its pixels.
+  const int result = av_frame_make_writable(m.picture.get());
+  if (result < 0) m.fail_encoding(result);
+  m.submit_picture();
+}
+
+void Mp4Writer::Impl::submit_picture() {
+  Impl& m = *this;
+  int result = 0;
   m.picture->pts = m.frames;  // frame k at k/fps (time base 1/fps)
 
   AVFrame* to_encode = m.picture.get();
