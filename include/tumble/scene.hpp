@@ -68,6 +68,10 @@ struct RenderSettings {
 enum class Projection { Perspective, Orthographic };
 inline constexpr std::array<std::string_view, 2> kProjectionNames = {"perspective", "orthographic"};
 
+/// The direction a framed camera (no position in the scene) looks from, towards the scene: SPEC's
+/// default camera position (camera_framing.hpp).
+inline const Vec3 kFramingDirection{5.0, 3.0, 6.0};
+
 struct CameraSettings {
   Vec3 position{5.0, 3.0, 6.0};
   Vec3 target{0.0, 0.5, 0.0};
@@ -76,6 +80,11 @@ struct CameraSettings {
   Projection projection = Projection::Perspective;
   double ortho_height_m = 4.0;  ///< orthographic only: metres of the scene shown top to bottom
   std::optional<std::string> follow;  ///< name of a body to keep in view
+  /// What the scene file states. No position: the camera frames the run (camera_framing.hpp).
+  bool position_given = false, target_given = false, ortho_height_given = false;
+  /// Set on the camera actually used when its position (and target, ortho height) came from
+  /// framing the run rather than from the scene.
+  bool framed = false;
 };
 
 struct LightSettings {

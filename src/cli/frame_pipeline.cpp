@@ -78,8 +78,9 @@ void FramePipeline::run_all(Progress& progress) {
           if (!shown.empty()) spare.push(std::move(shown));
           shown = std::move(job->rgba);
         }
-        const FrameView view{job->frame, double(job->frame) / fps_, shown.data(), width,
-                             height,     premultiplied,            job->repeat};
+        const FrameView view{
+            job->frame, double(job->frame) / fps_, shown.data(), width, height, premultiplied,
+            job->repeat};
         for (std::size_t i = 0; i < clip_sinks_.size(); ++i) {
           const auto t0 = Clock::now();
           clip_sinks_[i]->accept(view);

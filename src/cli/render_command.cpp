@@ -12,6 +12,7 @@
 #include "frame_pipeline.hpp"
 #include "frame_sinks.hpp"
 #include "progress.hpp"
+#include "tumble/camera_framing.hpp"
 #include "tumble/egl_context.hpp"
 #include "tumble/renderer.hpp"
 #include "tumble/run_report.hpp"
@@ -131,6 +132,9 @@ int run_render(const RenderOptions& o) {
         " pixels a side; got " + std::to_string(width) + "x" + std::to_string(height));
   const SceneModels models = load_models(scene);
   const WorldDef def = make_world_def(scene, models);
+  // No camera position in the scene: simulate once to frame the whole run (a few ms next to
+  // drawing it); run.json then records the camera used, so the view can be pinned.
+  scene.camera = frame_camera(scene, def);
 
   const fs::path dir = output_dir(o.common, scene);
   if (o.png) make_output_dir(dir / "frames");

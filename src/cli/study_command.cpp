@@ -10,8 +10,10 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "tumble/camera_framing.hpp"
 #include "tumble/study.hpp"
 #include "tumble/trajectory_writer.hpp"
+#include "tumble/world_builder.hpp"
 
 namespace tumble::cli {
 namespace {
@@ -160,7 +162,9 @@ int run_study(const StudyOptions& o) {
   if (!o.common.integrator.empty())
     bad("--integrator does not apply to study, which runs every integrator it lists; choose "
         "them with --integrators LIST");
-  const Scene scene = load_scene(o.common);
+  Scene scene = load_scene(o.common);
+  // Pixels are those of the clip `tumble render` would draw: the same framed camera.
+  scene.camera = frame_camera(scene, make_world_def(scene, load_models(scene)));
   const study::StudyPlan plan = make_plan(o, scene);
   const std::filesystem::path dir = output_dir(o.common, scene);
 

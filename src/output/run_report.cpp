@@ -45,7 +45,8 @@ ordered_json settings_json(const Scene& s) {
                  {"fov_deg", s.camera.fov_deg},
                  {"projection", kProjectionNames[static_cast<int>(s.camera.projection)]},
                  {"ortho_height", s.camera.ortho_height_m},
-                 {"follow", s.camera.follow ? ordered_json(*s.camera.follow) : ordered_json()}};
+                 {"follow", s.camera.follow ? ordered_json(*s.camera.follow) : ordered_json()},
+                 {"framed", s.camera.framed}};
   j["light"] = {{"direction", vec(s.light.direction)}, {"shadows", s.light.shadows}};
   return j;
 }

@@ -195,7 +195,9 @@ struct Renderer::Impl {
   }
 
   // Where the floor fades away. A perspective camera sees it shrink towards a horizon: it fades
-  // 12-40 m from the origin. An orthographic camera sees it at one scale however deep, so a
+  // 12-40 m around what the camera looks at, farther for a camera farther away (1.2 and 4 times
+  // its distance, so a framed 50 m throw keeps its ground; a camera within 10 m gets 12-40 m).
+  // An orthographic camera sees it at one scale however deep, so a
   // floor there would fill the picture below the horizon with tiles flattened into stripes: it
   // is a band along the view's depth instead, full within 0.3 ortho_height of what the camera
   // looks at and gone at 1 ortho_height, the ground line of a textbook side view. (Looking
@@ -207,9 +209,14 @@ struct Renderer::Impl {
   FloorFade floor_fade(const World& world) const {
     const CameraSettings& cam = scene.camera;
     FloorFade f;
-    if (cam.projection != Projection::Orthographic) return f;
     const Vec3 target = camera_target(scene, world);
     const Vec3 view = target - cam.position;
+    if (cam.projection != Projection::Orthographic) {
+      f.centre = Eigen::Vector2d(target.x(), target.z());
+      f.start_m = std::max(f.start_m, 1.2 * view.norm());
+      f.end_m = std::max(f.end_m, 4.0 * view.norm());
+      return f;
+    }
     const Eigen::Vector2d along(view.x(), view.z());
     if (along.norm() < 1e-3 * view.norm()) return f;
     f.centre = Eigen::Vector2d(target.x(), target.z());
@@ -244,10 +251,13 @@ struct Renderer::Impl {
 
     if (scene.floor) {
       const double h = scene.floor->height;
-      // Floor: a square around the origin, big enough to reach the fade-out.
-      const double extent = 60.0;
+      // Floor: a square around the fade's centre, big enough to reach the fade-out.
+      const FloorFade f = floor_fade(last);
+      const double extent = std::max(60.0, 1.5 * f.end_m);
       Mat4 model = Mat4::Identity();
       model(0, 0) = model(2, 2) = extent;
+      model(0, 3) = f.centre.x();
+      model(2, 3) = f.centre.y();
       model(1, 3) = h;
       glUseProgram(floor_program);
       set(floor_program, "u_model", model);
@@ -256,7 +266,6 @@ struct Renderer::Impl {
       set(floor_program, "u_tile_dark", floor_tile_color(Vec3(0.68, 0.71, 0.75), light));
       set(floor_program, "u_background", bg);
       glUniform1i(glGetUniformLocation(floor_program, "u_transparent"), transparent() ? 1 : 0);
-      const FloorFade f = floor_fade(last);
       glUniform2f(glGetUniformLocation(floor_program, "u_fade_centre"), float(f.centre.x()),
                   float(f.centre.y()));
       glUniform2f(glGetUniformLocation(floor_program, "u_fade_axis"), float(f.axis.x()),

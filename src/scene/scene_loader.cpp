@@ -100,6 +100,9 @@ CameraSettings read_camera(const toml::table& table, const std::string& file,
       table, "[camera]", file,
       {"position", "target", "up", "fov_deg", "projection", "ortho_height", "follow"});
   CameraSettings c;
+  c.position_given = r.has("position");
+  c.target_given = r.has("target");
+  c.ortho_height_given = r.has("ortho_height");
   c.position = r.vec3("position").value_or(c.position);
   c.target = r.vec3("target").value_or(c.target);
   c.up = r.vec3("up").value_or(c.up);
@@ -117,7 +120,8 @@ CameraSettings read_camera(const toml::table& table, const std::string& file,
       if (r.has(key)) return r.where(key);
     return r.where();
   };
-  const Vec3 view = c.target - c.position;
+  // Without a stated position the camera frames the run, looking along -kFramingDirection.
+  const Vec3 view = c.position_given ? Vec3(c.target - c.position) : Vec3(-kFramingDirection);
   if (length(view) == 0.0)
     fail(blame({"target", "position"}), "target in [camera] must differ from position");
   // A look-at builds its right vector from up x view; when the two are within about 1e-6 rad of

@@ -34,7 +34,8 @@ std::pair<long, long> render_both_ways(const TestDir& dir, const std::vector<std
   const nlohmann::json drawn = read_json(dir / "drawn/run.json");
   for (std::size_t i = 0; i < drawn["outputs"].size(); ++i)
     EXPECT_EQ(reused["outputs"][i]["sha256"], drawn["outputs"][i]["sha256"]);
-  return {reused["counts"]["frames_reused"].get<long>(), drawn["counts"]["frames_reused"].get<long>()};
+  return {reused["counts"]["frames_reused"].get<long>(),
+          drawn["counts"]["frames_reused"].get<long>()};
 }
 
 TEST(UnchangedFrames, DefaultSceneAtRestIsTheSameBytesAsDrawingEveryFrame) {
@@ -42,9 +43,8 @@ TEST(UnchangedFrames, DefaultSceneAtRestIsTheSameBytesAsDrawingEveryFrame) {
   // over 4 s, the last ~90 show nothing new. Every clip output (MP4, PNG frames, GIF, WebP) and
   // the pictures drawn between them (a still and a strobe pose inside the rest) must match.
   const TestDir dir;
-  const auto [reused, drawn] =
-      render_both_ways(dir, {"--size", "160x120", "--png", "--gif", "--webp", "--still", "3.5",
-                             "--strobe", "3"});
+  const auto [reused, drawn] = render_both_ways(
+      dir, {"--size", "160x120", "--png", "--gif", "--webp", "--still", "3.5", "--strobe", "3"});
   EXPECT_GT(reused, 60) << "the box rests for over a second: those frames need no drawing";
   EXPECT_LT(reused, 240);
   EXPECT_EQ(drawn, 0);

@@ -493,6 +493,30 @@ TEST(SceneLoader, CameraPositionMustDifferFromTarget) {
                       "target in [camera] must differ from position"));
 }
 
+TEST(SceneLoader, RecordsWhichCameraKeysTheSceneStates) {
+  // No position: the camera frames the run (camera_framing.hpp); what was stated is kept.
+  const Scene none = parse_scene(with_box(""), "test.toml");
+  EXPECT_FALSE(none.camera.position_given);
+  EXPECT_FALSE(none.camera.target_given);
+  EXPECT_FALSE(none.camera.ortho_height_given);
+  EXPECT_FALSE(none.camera.framed);
+  const Scene some = parse_scene(
+      with_box("[camera]\ntarget = [0, 1, 0]\northo_height = 3\n"), "test.toml");
+  EXPECT_FALSE(some.camera.position_given);
+  EXPECT_TRUE(some.camera.target_given);
+  EXPECT_TRUE(some.camera.ortho_height_given);
+  const Scene all = parse_scene(
+      with_box("[camera]\nposition = [1, 2, 3]\ntarget = [0, 1, 0]\n"), "test.toml");
+  EXPECT_TRUE(all.camera.position_given);
+  EXPECT_TRUE(all.camera.target_given);
+}
+
+TEST(SceneLoader, FramedCameraUpMustNotBeParallelToTheFramingDirection) {
+  // Without a position the camera looks along -(5, 3, 6): an up along it is no up at all.
+  EXPECT_TRUE(FailsAt(with_box("[camera]\nup = [5, 3, 6]\n"), 2, 6,
+                      "up in [camera] must be non-zero and not parallel"));
+}
+
 TEST(SceneLoader, CameraUpMustNotBeParallelToTheViewDirection) {
   EXPECT_TRUE(FailsAt(with_box("[camera]\nposition = [0, 5, 0]\ntarget = [0, 0, 0]\n"
                                "up = [0, 2, 0]\n"),
