@@ -166,8 +166,10 @@ class World {
   std::vector<RigidBody> bodies_;
   std::vector<ContactTolerances> tolerances_;
   std::vector<AdaptiveController> controllers_;
-  std::vector<double> flight_start_energy_;  // energy when the current contact-free stretch began
-  std::vector<int> crossing_;                // scratch: vertices found below the floor
+  std::vector<double> flight_start_energy_;    // energy when the current contact-free stretch began
+  std::vector<BodyState> flight_start_state_;  // the last contact step's end, until evaluated
+  std::vector<char> flight_start_known_;       // flight_start_energy_ is that state's energy
+  std::vector<int> crossing_;                  // scratch: vertices found below the floor
   long steps_ = 0;
   double time_ = 0.0;
   long evaluations_ = 0;

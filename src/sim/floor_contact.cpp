@@ -141,17 +141,25 @@ ContactSet held_points(const RigidBody& b, const ContactSet& c, double hold_spee
 double resolve_impact(RigidBody& b, const ContactSet& c, double rest_speed, double mu,
                       double* normal_impulse) {
   const int n = c.count;
-  const double e_before = kinetic_energy(b);
-  const BodyState before = b.state;
   const Vec3 omega = b.angular_velocity();
-  const Mat3 Iinv = b.inverse_inertia_world();
   Vec3 r[8];
   for (Vec3& ri : r) ri.setZero();  // only the first n are used
   LcpVector vn(n);
+  bool approaching = false;
   for (int i = 0; i < n; ++i) {
     r[i] = b.state.R * b.vertices()[c.vertex[i]];
     vn(i) = point_velocity(b, omega, r[i]).y();
+    approaching |= vn(i) < 0.0;
   }
+  // No point approaches: zero impulses solve the LCP (and leave no friction to apply). The
+  // common case of resting contact, which checks every stretch for a point still coming down.
+  if (!approaching) {
+    std::fill(normal_impulse, normal_impulse + n, 0.0);
+    return 0.0;
+  }
+  const double e_before = kinetic_energy(b);
+  const BodyState before = b.state;
+  const Mat3 Iinv = b.inverse_inertia_world();
   LcpMatrix A;
   fill_contact_matrix(b.inverse_mass(), Iinv, r, n, A);
 

@@ -38,7 +38,10 @@ bool strictly_inside(const PlanePoint* polygon, int n, double x, double z, doubl
   const PlanePoint q{x, z, -1};
   for (int i = 0; i < n; ++i) {
     const PlanePoint &a = polygon[i], &b = polygon[(i + 1) % n];
-    if (cross(a, b, q) <= margin * std::hypot(b.x - a.x, b.z - a.z)) return false;
+    // sqrt of the squares, not hypot: metres never overflow a double, and this runs in every
+    // derivative evaluation of a resting face.
+    const double dx = b.x - a.x, dz = b.z - a.z;
+    if (cross(a, b, q) <= margin * std::sqrt(dx * dx + dz * dz)) return false;
   }
   return true;
 }

@@ -88,6 +88,8 @@ World::World(const WorldDef& def) : def_(def) {
     const double step = def.integrator == Integrator::Adaptive ? 0.0 : def.dt_s;
     tolerances_.push_back(Tol::for_body(length_scale(b), def.gravity, step));
     flight_start_energy_.push_back(bodies_.back().energy(def.gravity));
+    flight_start_state_.push_back(bodies_.back().state);
+    flight_start_known_.push_back(true);
   }
   controllers_.resize(bodies_.size());
 }
@@ -202,11 +204,21 @@ void World::check_state(std::size_t i) {
 
 void World::check_free_flight(std::size_t i, bool contact) {
   RigidBody& b = bodies_[i];
-  const double e = b.energy(def_.gravity);
   if (contact) {
-    flight_start_energy_[i] = e;
+    // The energy a flight starts from is that of the last contact step's end: kept as a state
+    // and only evaluated if a flight follows (a body in contact for many steps pays a copy).
+    flight_start_state_[i] = b.state;
+    flight_start_known_[i] = false;
     return;
   }
+  if (!flight_start_known_[i]) {
+    const BodyState now = b.state;
+    b.state = flight_start_state_[i];
+    flight_start_energy_[i] = b.energy(def_.gravity);
+    b.state = now;
+    flight_start_known_[i] = true;
+  }
+  const double e = b.energy(def_.gravity);
   // Gravity is conservative and drag only removes energy: in free flight any gain is the
   // integrator's. Scale: the body's kinetic energy plus m·g·ℓ (so a body at rest in zero
   // gravity does not make round-off look large). Threshold 0.1 %: rk4 and midpoint stay orders
@@ -264,10 +276,10 @@ void World::advance_body(std::size_t index, double h) {
     ContactSet resting = touching_vertices(b, floor_y, tol.touch_m, rest_speed);
     if (resting.count > 0) {
       contact = true;
-      const double e0 = b.energy(def_.gravity);
       double impulse[8];
-      resolve_impact(b, resting, INFINITY, mu, impulse);
-      stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
+      // Impulses change the kinetic energy only: the energy they return is the gain.
+      stats_.max_energy_gain_J =
+          std::max(stats_.max_energy_gain_J, resolve_impact(b, resting, INFINITY, mu, impulse));
       // Only points that do not move away are held: a force at a separating point would work.
       resting = held_points(b, resting, tol.hold_speed_mps);
     }
@@ -348,10 +360,11 @@ void World::advance_body(std::size_t index, double h) {
     remaining = impact ? remaining - tau : 0.0;
     if (resting.count > 0) {
       // Integration drift of held points is removed by a lift; it counts as penetration.
-      const double e0 = b.energy(def_.gravity);
       const double depth = lift_out_of_floor(b, resting, floor_y);
       stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
-      stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
+      // A lift by `depth` along +y gains exactly the potential energy -m g_y depth.
+      stats_.max_energy_gain_J =
+          std::max(stats_.max_energy_gain_J, -b.mass() * def_.gravity.y() * depth);
       // A lift of more than 1e-4 ℓ in one stretch is drift the contact model should not see.
       if (depth > 1e-4 * tol.length_m)
         if (!diagnostics_.recur("contact_tolerance_missed"))
@@ -364,11 +377,11 @@ void World::advance_body(std::size_t index, double h) {
       contact = true;
       ContactSet touching = touching_vertices(b, floor_y, tol.touch_m, INFINITY);
       const double speed = approach_speed(b, touching);
-      const double e0 = b.energy(def_.gravity);
       double impulse[8];
       const bool capped = events >= Tol::kMaxEventsPerStep;
-      resolve_impact(b, touching, capped ? INFINITY : rest_speed, mu, impulse);
-      stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, b.energy(def_.gravity) - e0);
+      stats_.max_energy_gain_J =
+          std::max(stats_.max_energy_gain_J,
+                   resolve_impact(b, touching, capped ? INFINITY : rest_speed, mu, impulse));
       record_impact(index, t_event, speed);
       if (events == Tol::kMaxEventsPerStep)
         if (!diagnostics_.recur("event_cap_hit"))
