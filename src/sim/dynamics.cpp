@@ -78,6 +78,22 @@ void BodyDynamics::contact_forces(const BodyState& s, double* out) const {
   solve_contacts(s, kinematics(s), out);
 }
 
+namespace {
+
+// The cofactor matrix of a symmetric 3×3 matrix (itself symmetric, and its adjugate).
+Eigen::Matrix3d symmetric_cofactors(const Eigen::Matrix3d& a) {
+  Eigen::Matrix3d c;
+  c(0, 0) = a(1, 1) * a(2, 2) - a(1, 2) * a(1, 2);
+  c(1, 1) = a(0, 0) * a(2, 2) - a(0, 2) * a(0, 2);
+  c(2, 2) = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1);
+  c(0, 1) = c(1, 0) = a(0, 2) * a(1, 2) - a(0, 1) * a(2, 2);
+  c(0, 2) = c(2, 0) = a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1);
+  c(1, 2) = c(2, 1) = a(0, 1) * a(0, 2) - a(0, 0) * a(1, 2);
+  return c;
+}
+
+}  // namespace
+
 bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
   // Frictionless only: with no tangential force, the motion depends on the contact forces only
   // through their resultant wrench — the force N along the normal n = +y at the centre of
@@ -110,11 +126,14 @@ bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
   }
   // Least squares: the points are coplanar (they all touch the plane), so the system is
   // consistent and this is its exact solution; collinear points make JtJ singular: not a face.
-  const Eigen::LDLT<Eigen::Matrix3d> ldlt(JtJ);
-  if (ldlt.info() != Eigen::Success ||
-      ldlt.vectorD().minCoeff() <= 1e-12 * JtJ.diagonal().maxCoeff())
-    return false;
-  const Vec3 w = ldlt.solve(-Jtb);
+  // Solved in closed form (cofactors; JtJ is symmetric): for a 3×3 in every derivative
+  // evaluation a factorisation costs more than the solve. det / (product of the diagonal) is in
+  // [0, 1] for a positive semi-definite matrix (Hadamard) and ~1e-16 for collinear points: below
+  // 1e-12 the face is left to the LCP, which is always right (this path is only a shortcut).
+  const Eigen::Matrix3d C = symmetric_cofactors(JtJ);
+  const double det = JtJ.row(0).dot(C.row(0));
+  if (!(det > 1e-12 * JtJ(0, 0) * JtJ(1, 1) * JtJ(2, 2))) return false;
+  const Vec3 w = C * (-Jtb) / det;  // C is symmetric: the adjugate
   const double N = w(0);
   if (!(N > 0.0)) return false;  // the floor cannot pull: the body leaves it (the LCP decides)
   // Centre of pressure (relative to the centre of mass, in the floor plane) strictly inside the
