@@ -6,11 +6,12 @@
 
 #include "commands.hpp"
 #include "tumble/error.hpp"
+#include "version_text.hpp"
 
 int main(int argc, char** argv) {
   using namespace tumble;
   CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};
-  app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
+  app.set_version_flag("--version", cli::version_text);
   app.require_subcommand(1);
   cli::RenderOptions render;
   cli::add_render_command(app, render);
