@@ -74,6 +74,11 @@ for sub in "${subcommands[@]}"; do
     grep -qE "^[0-9]+:$positional:" <<<"$specs" || fail "zsh: tumble $sub has no spec for $positional"
   done
 done
+# The value functions, with _describe replaced by one that prints its candidates.
+zsh_values() { zsh -f -c '_describe() { print -l -- ${(P)${@[-1]}}; }; compdef() { :; }
+  source "$1"; tumble=$2; $3' _ "$zsh_file" "$tumble" "$1"; }
+grep -qx libx264 <<<"$(zsh_values _tumble_encoders)" || fail "zsh: --encoder does not offer libx264"
+[ "$(zsh_values _tumble_egl_devices | head -n 1)" = 0 ] || fail "zsh: --egl-device does not offer 0"
 action=$(zsh_run _tumble_value_action --integrator | tr -d '()' | tr ' ' '\n' | sort)
 [ "$action" = "$integrators" ] || fail "zsh: --integrator values are not the integrators of --help"
 
