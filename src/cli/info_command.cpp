@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "tumble/egl_context.hpp"
 #include "tumble/mp4_writer.hpp"
+#include "version_text.hpp"
 
 namespace tumble::cli {
 
@@ -12,7 +13,7 @@ void add_info_command(CLI::App& app) {
 }
 
 int run_info() {
-  std::printf("tumble %s\n", TUMBLE_VERSION);
+  std::printf("%s\n", version_text().c_str());  // tumble X.Y.Z, then its libraries
   const auto devices = EglContext::list_devices();
   std::printf("EGL devices: %zu\n", devices.size());
   for (const auto& d : devices) std::printf("  %s\n", d.c_str());

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "tumble/error.hpp"
+#include "version_text.hpp"
 
 int main(int argc, char** argv) {
   using namespace tumble;
@@ -13,7 +14,7 @@ int main(int argc, char** argv) {
   // (a slow start on a busy machine) must end the run cleanly too, not kill it.
   cli::install_interrupt_handlers();
   CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};
-  app.set_version_flag("--version", std::string("tumble ") + TUMBLE_VERSION);
+  app.set_version_flag("--version", cli::version_text);
   app.require_subcommand(1);
   cli::RenderOptions render;
   cli::add_render_command(app, render);

@@ -34,6 +34,38 @@ TEST(Sha256, MatchesFipsVectors) {
             "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
   EXPECT_EQ(sha256_hex(std::string(1000000, 'a')),
             "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  // FIPS 180-2 / NIST CSHA 896-bit message: two 64-byte blocks plus padding into a third.
+  EXPECT_EQ(sha256_hex("abcdefghbcdefghicdefghijdefghijkefghijklfghijklmghijklmnhijklmno"
+                       "ijklmnopjklmnopqklmnopqrlmnopqrsmnopqrstnopqrstu"),
+            "cf5b16a778af8380036ce59e7b0492370b249b11e8f07a51afac45037afee9d1");
+}
+
+// Files are digested in 64 KiB chunks: the NIST million-'a' vector spans 16 chunks, the last one
+// partial, so this checks that chunks are streamed into one digest (exact: digests are equal or not).
+TEST(Sha256, StreamsAFileInChunksToTheNistDigest) {
+  const fs::path dir = fresh_dir("sha_stream");
+  {
+    std::ofstream(dir / "million_a", std::ios::binary) << std::string(1000000, 'a');
+    std::ofstream(dir / "empty", std::ios::binary);
+  }
+  EXPECT_EQ(sha256_file_hex(dir / "million_a"),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  EXPECT_EQ(sha256_file_hex(dir / "empty"),
+            "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  // A size that ends exactly on a chunk boundary, with every byte value: same as the one-shot digest.
+  std::string bytes(3 * 65536, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 131 % 256);
+  std::ofstream(dir / "boundary", std::ios::binary) << bytes;
+  EXPECT_EQ(sha256_file_hex(dir / "boundary"), sha256_hex(bytes));
+}
+
+TEST(Sha256, AMissingFileIsAnEnvironmentError) {
+  try {
+    sha256_file_hex(fresh_dir("sha_missing") / "absent");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::Environment);
+  }
 }
 
 TEST(AtomicFile, AppearsOnlyOnCommit) {
