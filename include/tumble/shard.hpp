@@ -28,6 +28,7 @@ using Environment = std::function<std::optional<std::string>(const char* name)>;
 /// SLURM_ARRAY_TASK_COUNT; in a Kubernetes Indexed Job, JOB_COMPLETION_INDEX of `shards`
 /// (--shards N, the Job's completions; required there). Throws tumble::Error (BadInput) for a
 /// value that is not a number or a shard out of range.
-std::optional<Shard> shard_from_environment(const Environment& env, std::optional<std::size_t> shards);
+std::optional<Shard> shard_from_environment(const Environment& env,
+                                            std::optional<std::size_t> shards);
 
 }  // namespace tumble::sweep

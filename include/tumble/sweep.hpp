@@ -30,9 +30,9 @@ struct Distribution {
 
 /// A key path of the plan with where its key and value are written.
 struct PlanKey {
-  std::string path;        ///< "floor.restitution", "body.box.orientation.degrees"
-  SourceLocation key_at;   ///< the key in the plan
-  SourceLocation value_at; ///< its value (the grid's array, the distribution's table)
+  std::string path;         ///< "floor.restitution", "body.box.orientation.degrees"
+  SourceLocation key_at;    ///< the key in the plan
+  SourceLocation value_at;  ///< its value (the grid's array, the distribution's table)
 };
 
 /// A [grid] entry: the values it takes, in order, each as TOML text.
@@ -81,8 +81,8 @@ Plan load_plan(const std::filesystem::path& path);
 /// One value a job gives a key path.
 struct Parameter {
   const PlanKey* key = nullptr;
-  std::string value;       ///< TOML text: 0.2, [0.0, 0.0, 1.0], "fxaa"
-  SourceLocation from;     ///< the grid value or the distribution it came from
+  std::string value;    ///< TOML text: 0.2, [0.0, 0.0, 1.0], "fxaa"
+  SourceLocation from;  ///< the grid value or the distribution it came from
 };
 
 struct Job {

@@ -92,7 +92,7 @@ int run_render(const RenderOptions& o, RenderSession* session = nullptr);
 
 struct SweepOptions {
   std::string plan_path;
-  std::string out_dir;  // empty: out/<plan-stem>/
+  std::string out_dir;   // empty: out/<plan-stem>/
   bool list = false;     // print the jobs as CSV, run nothing
   bool collect = false;  // write sweep.csv, exit 1 naming missing or failed jobs
   std::string shard;     // "I/N"; empty: from the scheduler's environment, else every job

@@ -124,8 +124,8 @@ int collect(const Plan& plan, const std::vector<Job>& jobs, const fs::path& out,
   std::vector<std::size_t> missing, failed;
   for (const Job& job : jobs) {
     const std::string sha = sha256_hex(sweep::job_scene_text(plan, job));
-    records.push_back(sweep::read_job_folder(out / sweep::job_folder_name(job.index), sha,
-                                             TUMBLE_VERSION));
+    records.push_back(
+        sweep::read_job_folder(out / sweep::job_folder_name(job.index), sha, TUMBLE_VERSION));
     if (records.back().state == JobState::Failed) failed.push_back(job.index);
     if (records.back().state == JobState::Missing || records.back().state == JobState::Stale)
       missing.push_back(job.index);
@@ -243,10 +243,11 @@ int run_sweep(const SweepOptions& o) {
     }
   }
   if (!o.quiet)
-    std::printf("tumble: sweep: shard %s: %zu jobs, %zu ran, %zu skipped (finished before), %zu "
-                "failed, in %.2f s into %s\n",
-                shard.describe().c_str(), in_shard, ran, skipped, failed, seconds_since(start),
-                out.c_str());
+    std::printf(
+        "tumble: sweep: shard %s: %zu jobs, %zu ran, %zu skipped (finished before), %zu "
+        "failed, in %.2f s into %s\n",
+        shard.describe().c_str(), in_shard, ran, skipped, failed, seconds_since(start),
+        out.c_str());
   return worst;
 }
 

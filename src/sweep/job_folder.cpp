@@ -79,7 +79,8 @@ JobRecord read_job_folder(const fs::path& dir, std::string_view scene_sha256,
       int code = 3;
       const std::size_t eol = error->find('\n');
       const std::string first = error->substr(0, eol);
-      if (first.starts_with("exit ")) std::from_chars(first.data() + 5, first.data() + first.size(), code);
+      if (first.starts_with("exit "))
+        std::from_chars(first.data() + 5, first.data() + first.size(), code);
       record.state = JobState::Failed;
       record.exit_code = code;
       record.error = eol == std::string::npos ? "" : error->substr(eol + 1);

@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 // The path's segments below the scene's root table: ("floor", "restitution") or, for a body,
 // the body's table and ("orientation", "degrees").
 struct Target {
-  toml::table* table = nullptr;          // where the first key of `keys` lives
-  std::vector<std::string> keys;         // the rest of the path, the last one set
+  toml::table* table = nullptr;   // where the first key of `keys` lives
+  std::vector<std::string> keys;  // the rest of the path, the last one set
 };
 
 std::vector<std::string> split(std::string_view s) {
@@ -61,7 +61,8 @@ Target find_target(toml::table& root, const Parameter& p) {
   }
   if (!root.contains(table)) root.insert(table, toml::table{});
   toml::table* t = root[table].as_table();
-  if (!t) fail(p.key->key_at, "key path \"" + path + "\": " + table + " is not a table in the scene");
+  if (!t)
+    fail(p.key->key_at, "key path \"" + path + "\": " + table + " is not a table in the scene");
   return {t, split(std::string_view(path).substr(dot + 1))};
 }
 
@@ -94,7 +95,8 @@ void absolute_meshes(toml::table& root, const fs::path& scene_path) {
     if (!mesh || mesh->empty()) continue;
     const fs::path p(*mesh);
     if (p.is_absolute()) continue;
-    body->insert_or_assign("mesh", fs::absolute(scene_path.parent_path() / p).lexically_normal().string());
+    body->insert_or_assign("mesh",
+                           fs::absolute(scene_path.parent_path() / p).lexically_normal().string());
   }
 }
 
@@ -180,7 +182,8 @@ void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) 
       const std::optional<Placed> at = placed(text, p);
       const bool value = at && inside(e.where(), at->value) && !inside(e.where(), at->key);
       fail(value ? p.from : p.key->key_at,
-           describe_job(job) + ": " + e.what() + (value ? "" : " (key path \"" + p.key->path + "\")"));
+           describe_job(job) + ": " + e.what() +
+               (value ? "" : " (key path \"" + p.key->path + "\")"));
     }
   }
   // Only the combination fails (dt against duration, a body inside the floor): the first key.

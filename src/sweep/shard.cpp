@@ -67,7 +67,8 @@ std::optional<Shard> shard_from_environment(const Environment& env,
     return checked(number("JOB_COMPLETION_INDEX", 0), static_cast<long long>(*shards),
                    "JOB_COMPLETION_INDEX");
   }
-  if (shards) bad("--shards N needs JOB_COMPLETION_INDEX (a Kubernetes Indexed Job); use --shard I/N");
+  if (shards)
+    bad("--shards N needs JOB_COMPLETION_INDEX (a Kubernetes Indexed Job); use --shard I/N");
   return std::nullopt;
 }
 

@@ -56,8 +56,10 @@ std::string sweep_csv(const Plan& plan, const std::vector<Job>& jobs,
     const JobRecord& r = records[i];
     std::string line = parameters(jobs[i]);
     line.append(",").append(to_string(r.state)).append(",");
-    if (r.state == JobState::Failed) line += std::to_string(r.exit_code);
-    else if (r.state == JobState::Finished) line += "0";
+    if (r.state == JobState::Failed)
+      line += std::to_string(r.exit_code);
+    else if (r.state == JobState::Finished)
+      line += "0";
     if (r.facts) {
       std::string outputs;
       for (const auto& [path, sha] : r.facts->outputs)

@@ -78,8 +78,8 @@ struct Reader {
     const std::size_t dot = path.find('.');
     const std::string table = path.substr(0, dot);
     if (std::find(kSceneTables.begin(), kSceneTables.end(), table) == kSceneTables.end())
-      fail(where, "unknown key path " + in_quotes(path) + ": a scene has no table " + in_quotes(table) +
-                      did_you_mean(table, names(kSceneTables)) +
+      fail(where, "unknown key path " + in_quotes(path) + ": a scene has no table " +
+                      in_quotes(table) + did_you_mean(table, names(kSceneTables)) +
                       " (a key path is table.key or body.<name>.key)");
     if (dot == std::string::npos || dot + 1 == path.size())
       fail(where, "key path " + in_quotes(path) + " needs a key after " + in_quotes(table));
@@ -99,7 +99,8 @@ struct Reader {
   void add_key(PlanKey key) {
     for (const PlanKey* other : plan.keys())
       if (other->path == key.path)
-        fail(key.key_at, "key path " + in_quotes(key.path) + " is set twice in the plan (first at " +
+        fail(key.key_at, "key path " + in_quotes(key.path) +
+                             " is set twice in the plan (first at " +
                              std::to_string(other->key_at.line) + ":" +
                              std::to_string(other->key_at.column) + ")");
     check_path(key.path, key.key_at);
@@ -130,8 +131,7 @@ struct Reader {
   }
 
   double number(const toml::node& node, const std::string& what) const {
-    if (!node.is_number())
-      fail(at(node), what + " must be a number, got " + toml_text(node));
+    if (!node.is_number()) fail(at(node), what + " must be a number, got " + toml_text(node));
     const double x = node.is_integer() ? static_cast<double>(node.as_integer()->get())
                                        : node.as_floating_point()->get();
     if (!std::isfinite(x)) fail(at(node), what + " must be finite");
@@ -149,8 +149,9 @@ struct Reader {
     const toml::array* a = pair[0].as_array();
     const toml::array* b = pair[1].as_array();
     if (!a || !b || a->size() != b->size() || a->empty())
-      fail(at(pair), what + " of a vector takes two arrays of equal length, e.g. [[0.0, 0.0, 1.0], "
-                            "[0.0, 0.0, 4.0]]");
+      fail(at(pair), what +
+                         " of a vector takes two arrays of equal length, e.g. [[0.0, 0.0, 1.0], "
+                         "[0.0, 0.0, 4.0]]");
     d.vector = true;
     for (std::size_t i = 0; i < a->size(); ++i) {
       d.first.push_back(number((*a)[i], what + "'s first array"));
@@ -161,8 +162,9 @@ struct Reader {
   Distribution read_distribution(const toml::table& table, const std::string& path) const {
     const std::string what = "[random] " + in_quotes(path);
     if (table.size() != 1)
-      fail(at(table), what + " must be one distribution: { uniform = [a, b] }, "
-                             "{ normal = [mean, sd] }, { integer = [a, b] } or { choice = [...] }");
+      fail(at(table), what +
+                          " must be one distribution: { uniform = [a, b] }, "
+                          "{ normal = [mean, sd] }, { integer = [a, b] } or { choice = [...] }");
     // toml++'s iterator owns the pair it yields: take the references out while it lives.
     const auto entry = table.begin();
     const toml::key& key = entry->first;
@@ -187,7 +189,8 @@ struct Reader {
       fail(at(node), label + " takes two values, got " + std::to_string(values->size()));
     if (d.kind == Distribution::Kind::Integer) {
       for (const toml::node& value : *values)
-        if (!value.is_integer()) fail(at(value), label + " takes two integers, got " + toml_text(value));
+        if (!value.is_integer())
+          fail(at(value), label + " takes two integers, got " + toml_text(value));
       d.lo = (*values)[0].as_integer()->get();
       d.hi = (*values)[1].as_integer()->get();
       if (d.lo > d.hi) fail(at(node), label + " must run upwards: [a, b] with a <= b");
@@ -237,7 +240,8 @@ struct Reader {
       fail(at(*count), "count in [random] must be an integer >= 1, got " + toml_text(*count));
     plan.random_count = static_cast<std::size_t>(count->as_integer()->get());
     const toml::node* seed = table.get("seed");
-    if (!seed) fail(at(table), "[random] needs seed, an integer >= 0 (the same seed, the same jobs)");
+    if (!seed)
+      fail(at(table), "[random] needs seed, an integer >= 0 (the same seed, the same jobs)");
     if (!seed->is_integer() || seed->as_integer()->get() < 0)
       fail(at(*seed), "seed in [random] must be an integer >= 0, got " + toml_text(*seed));
     plan.seed = static_cast<std::uint64_t>(seed->as_integer()->get());
@@ -249,14 +253,14 @@ toml::table parse_toml(std::string_view text, const std::string& file) {
   try {
     return toml::parse(text, std::string_view(file));
   } catch (const toml::parse_error& e) {
-    fail(location(e.source().begin, file),
-         "TOML syntax error: " + std::string(e.description()));
+    fail(location(e.source().begin, file), "TOML syntax error: " + std::string(e.description()));
   }
 }
 
 std::string read_text(const fs::path& path, const std::string& what, const SourceLocation& at) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) fail(at, "cannot read " + what + " " + in_quotes(path.string()) + ": it is a directory");
+  if (fs::is_directory(path, ec))
+    fail(at, "cannot read " + what + " " + in_quotes(path.string()) + ": it is a directory");
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in)
@@ -318,7 +322,8 @@ Plan parse_plan(std::string_view text, const std::string& path) {
          "a plan needs scene = \"FILE.toml\", the base scene (relative to the plan)");
   plan.scene_at = reader.at(*scene);
   const fs::path scene_path(scene->as_string()->get());
-  plan.scene_path = scene_path.is_absolute() ? scene_path : fs::path(path).parent_path() / scene_path;
+  plan.scene_path =
+      scene_path.is_absolute() ? scene_path : fs::path(path).parent_path() / scene_path;
   plan.scene_text = read_text(plan.scene_path, "scene file", plan.scene_at);
   reader.body_names = body_names(plan.scene_text, plan.scene_path.string());
 
@@ -328,7 +333,8 @@ Plan parse_plan(std::string_view text, const std::string& path) {
     plan.command_at = reader.at(*command);
     const std::optional<std::string> name = command->value<std::string>();
     if (!name || (*name != "render" && *name != "simulate"))
-      fail(plan.command_at, "command must be \"render\" or \"simulate\", got " + toml_text(*command));
+      fail(plan.command_at,
+           "command must be \"render\" or \"simulate\", got " + toml_text(*command));
     plan.command = *name;
   }
 

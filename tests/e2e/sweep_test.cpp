@@ -18,7 +18,7 @@ namespace {
 // a Slurm or Kubernetes job) and `env` (NAME=VALUE) added.
 RunResult sweep(std::vector<std::string> args, const fs::path& cwd,
                 const std::vector<std::string>& env = {}, const RunOptions& options = {}) {
-  std::vector<std::string> command = {"-u", "SLURM_ARRAY_TASK_ID", "-u", "SLURM_ARRAY_TASK_COUNT",
+  std::vector<std::string> command = {"-u", "SLURM_ARRAY_TASK_ID",  "-u", "SLURM_ARRAY_TASK_COUNT",
                                       "-u", "SLURM_ARRAY_TASK_MIN", "-u", "SLURM_ARRAY_TASK_STEP",
                                       "-u", "JOB_COMPLETION_INDEX"};
   command.insert(command.end(), env.begin(), env.end());
@@ -112,11 +112,11 @@ TEST(Sweep, ListPrintsTheJobsInGridOrderAndRunsNothing) {
   const RunResult r = sweep({"plan.toml", "--list"}, dir.path());
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   // The first key varies slowest.
-  EXPECT_EQ(lines(r.out), (std::vector<std::string>{
-                              "job,floor.restitution,body.box.angular_velocity",
-                              "0,0.2,\"[0.0, 0.0, 1.0]\"", "1,0.2,\"[0.0, 0.0, 4.0]\"",
-                              "2,0.5,\"[0.0, 0.0, 1.0]\"", "3,0.5,\"[0.0, 0.0, 4.0]\"",
-                              "4,0.8,\"[0.0, 0.0, 1.0]\"", "5,0.8,\"[0.0, 0.0, 4.0]\""}));
+  EXPECT_EQ(lines(r.out),
+            (std::vector<std::string>{"job,floor.restitution,body.box.angular_velocity",
+                                      "0,0.2,\"[0.0, 0.0, 1.0]\"", "1,0.2,\"[0.0, 0.0, 4.0]\"",
+                                      "2,0.5,\"[0.0, 0.0, 1.0]\"", "3,0.5,\"[0.0, 0.0, 4.0]\"",
+                                      "4,0.8,\"[0.0, 0.0, 1.0]\"", "5,0.8,\"[0.0, 0.0, 4.0]\""}));
   EXPECT_FALSE(fs::exists(dir / "out"));
   // A shard lists its own jobs.
   const RunResult s = sweep({"plan.toml", "--list", "--shard", "1/4"}, dir.path());
@@ -216,20 +216,20 @@ TEST(Sweep, SlurmArrayTasksAndIndexedJobsPickTheirShard) {
   const TestDir dir;
   write_plan(dir, kGridPlan);
   // Array --array=10-12: task 11 is shard 1 of 3, jobs 1 and 4.
-  const RunResult slurm = sweep({"plan.toml", "--out", "slurm"}, dir.path(),
-                                {"SLURM_ARRAY_TASK_ID=11", "SLURM_ARRAY_TASK_MIN=10",
-                                 "SLURM_ARRAY_TASK_COUNT=3"});
+  const RunResult slurm =
+      sweep({"plan.toml", "--out", "slurm"}, dir.path(),
+            {"SLURM_ARRAY_TASK_ID=11", "SLURM_ARRAY_TASK_MIN=10", "SLURM_ARRAY_TASK_COUNT=3"});
   ASSERT_EQ(slurm.exit_code, 0) << describe(slurm);
   EXPECT_EQ(names_in(dir / "slurm"), (std::vector<std::string>{"job_00001", "job_00004"}));
   // An Indexed Job's pod 0 of 2: jobs 0, 2, 4.
-  const RunResult k8s = sweep({"plan.toml", "--out", "k8s", "--shards", "2"}, dir.path(),
-                              {"JOB_COMPLETION_INDEX=0"});
+  const RunResult k8s =
+      sweep({"plan.toml", "--out", "k8s", "--shards", "2"}, dir.path(), {"JOB_COMPLETION_INDEX=0"});
   ASSERT_EQ(k8s.exit_code, 0) << describe(k8s);
   EXPECT_EQ(names_in(dir / "k8s"),
             (std::vector<std::string>{"job_00000", "job_00002", "job_00004"}));
   // Out of range: bad input before any job runs.
-  const RunResult bad = sweep({"plan.toml", "--out", "bad", "--shards", "2"}, dir.path(),
-                              {"JOB_COMPLETION_INDEX=2"});
+  const RunResult bad =
+      sweep({"plan.toml", "--out", "bad", "--shards", "2"}, dir.path(), {"JOB_COMPLETION_INDEX=2"});
   EXPECT_EQ(bad.exit_code, 2) << describe(bad);
   EXPECT_NE(bad.err.find("out of range"), std::string::npos) << bad.err;
   EXPECT_EQ(sweep({"plan.toml", "--shard", "3/3"}, dir.path()).exit_code, 2);

@@ -1,10 +1,11 @@
 // A job folder's state: finished only with a run.json of the same scene and version.
+#include "tumble/job_folder.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "../test_dir.hpp"
-#include "tumble/job_folder.hpp"
 #include "tumble/sweep_csv.hpp"
 
 namespace tumble::sweep {

@@ -1,11 +1,12 @@
 // A job's effective scene: the base scene with the parameters set, standalone, deterministic;
 // and the scene loader's objections mapped back to the plan.
+#include "tumble/job_scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "../test_dir.hpp"
-#include "tumble/job_scene.hpp"
 #include "tumble/scene.hpp"
 #include "tumble/world_builder.hpp"
 

@@ -1,11 +1,12 @@
 // Shards: --shard I/N, Slurm array tasks, Kubernetes Indexed Jobs; together they cover every
 // job exactly once.
+#include "tumble/shard.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "tumble/error.hpp"
-#include "tumble/shard.hpp"
 
 namespace tumble::sweep {
 namespace {
@@ -30,7 +31,8 @@ TEST(Shard, ShardsCoverEveryJobExactlyOnce) {
   for (std::size_t n = 1; n <= 5; ++n) {
     std::vector<int> hits(23, 0);
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < hits.size(); ++j) hits[j] += parse_shard(std::to_string(i) + "/" + std::to_string(n)).contains(j);
+      for (std::size_t j = 0; j < hits.size(); ++j)
+        hits[j] += parse_shard(std::to_string(i) + "/" + std::to_string(n)).contains(j);
     for (const int h : hits) EXPECT_EQ(h, 1);
   }
 }
@@ -46,24 +48,25 @@ TEST(Shard, ParsesAndChecksTheSpec) {
 }
 
 TEST(Shard, SlurmArrayTasksCountFromTheArraysMinimum) {
-  const auto s = shard_from_environment(
-      env_of({{"SLURM_ARRAY_TASK_ID", "12"}, {"SLURM_ARRAY_TASK_MIN", "10"},
-              {"SLURM_ARRAY_TASK_COUNT", "4"}}),
-      std::nullopt);
+  const auto s = shard_from_environment(env_of({{"SLURM_ARRAY_TASK_ID", "12"},
+                                                {"SLURM_ARRAY_TASK_MIN", "10"},
+                                                {"SLURM_ARRAY_TASK_COUNT", "4"}}),
+                                        std::nullopt);
   ASSERT_TRUE(s);
   EXPECT_EQ(s->index, 2u);
   EXPECT_EQ(s->count, 4u);
   // --array=0-6:2 gives tasks 0, 2, 4, 6: four shards, task 6 the last.
-  const auto stepped = shard_from_environment(
-      env_of({{"SLURM_ARRAY_TASK_ID", "6"}, {"SLURM_ARRAY_TASK_MIN", "0"},
-              {"SLURM_ARRAY_TASK_STEP", "2"}, {"SLURM_ARRAY_TASK_COUNT", "4"}}),
-      std::nullopt);
+  const auto stepped = shard_from_environment(env_of({{"SLURM_ARRAY_TASK_ID", "6"},
+                                                      {"SLURM_ARRAY_TASK_MIN", "0"},
+                                                      {"SLURM_ARRAY_TASK_STEP", "2"},
+                                                      {"SLURM_ARRAY_TASK_COUNT", "4"}}),
+                                              std::nullopt);
   ASSERT_TRUE(stepped);
   EXPECT_EQ(stepped->index, 3u);
   EXPECT_EQ(exit_code_of([&] {
-              shard_from_environment(env_of({{"SLURM_ARRAY_TASK_ID", "5"},
-                                             {"SLURM_ARRAY_TASK_COUNT", "4"}}),
-                                     std::nullopt);
+              shard_from_environment(
+                  env_of({{"SLURM_ARRAY_TASK_ID", "5"}, {"SLURM_ARRAY_TASK_COUNT", "4"}}),
+                  std::nullopt);
             }),
             2);
 }

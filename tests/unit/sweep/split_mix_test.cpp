@@ -1,11 +1,11 @@
 // The sweep's generator is defined to the bit: these tests pin it to SplitMix64's published
 // outputs and to its own definitions, so a plan draws the same values on every machine.
+#include "tumble/split_mix.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
-
-#include "tumble/split_mix.hpp"
 
 namespace tumble {
 namespace {

@@ -68,9 +68,9 @@ TEST(SweepPlan, GridVariesItsFirstKeySlowest) {
     ASSERT_EQ(job.parameters.size(), 2u);
     seen.push_back(job.parameters[0].value + " " + job.parameters[1].value);
   }
-  EXPECT_EQ(seen, (std::vector<std::string>{
-                      "0.2 [0.0, 0.0, 1.0]", "0.2 [0.0, 0.0, 4.0]", "0.5 [0.0, 0.0, 1.0]",
-                      "0.5 [0.0, 0.0, 4.0]", "0.8 [0.0, 0.0, 1.0]", "0.8 [0.0, 0.0, 4.0]"}));
+  EXPECT_EQ(seen, (std::vector<std::string>{"0.2 [0.0, 0.0, 1.0]", "0.2 [0.0, 0.0, 4.0]",
+                                            "0.5 [0.0, 0.0, 1.0]", "0.5 [0.0, 0.0, 4.0]",
+                                            "0.8 [0.0, 0.0, 1.0]", "0.8 [0.0, 0.0, 4.0]"}));
   // Each value remembers its place in the plan: 0.5 is on line 3, column 27.
   EXPECT_EQ(make_job(plan, 2).parameters[0].from.line, 3);
   EXPECT_EQ(make_job(plan, 2).parameters[0].from.column, 29);
@@ -137,8 +137,7 @@ seed = 1
   for (std::size_t i = 0; i < 6; ++i)
     EXPECT_EQ(make_job(plan, i).parameters[0].value, i < 3 ? "0.2" : "0.8") << i;
   const std::string csv = job_list_csv(plan, {make_job(plan, 0)});
-  EXPECT_TRUE(csv.starts_with("job,floor.restitution,body.box.orientation.degrees\n0,0.2,"))
-      << csv;
+  EXPECT_TRUE(csv.starts_with("job,floor.restitution,body.box.orientation.degrees\n0,0.2,")) << csv;
 }
 
 TEST(SweepPlan, JobFolderNames) {
@@ -183,9 +182,9 @@ TEST(SweepPlanErrors, PointIntoThePlan) {
             "2:19: args must be an array of strings; got 320 (write numbers in quotes: \"1.0\")");
   EXPECT_EQ(plan_error(head, "t12"),
             "1:1: a plan needs a [grid] of values or a [random] block (or both)");
-  EXPECT_EQ(plan_error("scene = \"nope.toml\"\n[grid]\n\"floor.height\" = [0]\n", "t13")
-                .substr(0, 29),
-            "1:9: cannot read scene file \"");
+  EXPECT_EQ(
+      plan_error("scene = \"nope.toml\"\n[grid]\n\"floor.height\" = [0]\n", "t13").substr(0, 29),
+      "1:9: cannot read scene file \"");
   EXPECT_EQ(plan_error(head + "[grid]\n\"floor.height\" = [0]\n[random]\ncount = 1\nseed = 1\n"
                               "\"floor.height\" = { uniform = [0, 1] }\n",
                        "t14"),
