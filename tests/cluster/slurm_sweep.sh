@@ -161,7 +161,7 @@ args = ["--size", "160x120", "--quiet"]
 PLAN
 array_job=$(sbatch --parsable --array=0-1 --chdir="$work" --cpus-per-task=1 \
   "$source_dir/scripts/slurm/sweep.sbatch" long.toml --out long)
-for _ in $(seq 300); do
+for _ in $(seq 600); do
   [ -f long/job_00003/run.json ] && [ -f long/job_00005/scene.toml ] && break
   sleep 0.1
 done

@@ -369,7 +369,7 @@ TEST(Sweep, PlanErrorsPointIntoThePlanBeforeAnyJobRuns) {
 
 TEST(Sweep, SigtermEndsTheCurrentJobCleanly) {
   const TestDir dir;
-  // Job 0 is short; job 1 takes far longer than the 1.5 s before SIGTERM.
+  // Job 0 is short; job 1 takes far longer than the 3 s before SIGTERM.
   write_plan(dir, R"(scene = "drop.toml"
 args = ["--size", "160x120", "--quiet"]
 [grid]
@@ -377,11 +377,11 @@ args = ["--size", "160x120", "--quiet"]
 )");
   RunOptions options;
   options.signal = SIGTERM;
-  options.signal_after = std::chrono::milliseconds(1500);
+  options.signal_after = std::chrono::milliseconds(3000);
   const RunResult r = sweep({"plan.toml"}, dir.path(), {}, options);
   EXPECT_EQ(r.exit_code, 143) << describe(r);
   EXPECT_FALSE(r.timed_out);
-  EXPECT_TRUE(fs::exists(job(dir, 0) / "run.json")) << "job 0 did not finish in 1.5 s";
+  EXPECT_TRUE(fs::exists(job(dir, 0) / "run.json")) << "job 0 did not finish in 3 s";
   EXPECT_TRUE(fs::exists(job(dir, 1) / "scene.toml"));
   EXPECT_FALSE(fs::exists(job(dir, 1) / "run.json"));
   EXPECT_FALSE(fs::exists(job(dir, 1) / "clip.mp4"));
