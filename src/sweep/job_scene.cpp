@@ -103,6 +103,9 @@ void absolute_meshes(toml::table& root, const fs::path& scene_path) {
 std::string header(const Plan& plan, const Job& job) {
   std::string h = "# tumble sweep, " + job_folder_name(job.index) + ": tumble " + plan.command;
   for (const std::string& arg : plan.args) h += " " + arg;  // the options decide the outputs too
+  // A comment ends at a line break: one inside an argument would make the rest TOML.
+  for (char& c : h)
+    if (c == '\n' || c == '\r') c = ' ';
   h += "\n";
   for (const Parameter& p : job.parameters) h += "# " + p.key->path + " = " + p.value + "\n";
   return h + "\n";
@@ -159,8 +162,9 @@ std::string job_scene_text(const Plan& plan, const Job& job) {
 
 void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) {
   const std::string name = job_folder_name(job.index) + "/scene.toml";
+  const std::string text = job_scene_text(plan, job);  // its own errors point into the plan
   try {
-    check(job_scene_text(plan, job), name);
+    check(text, name);
     return;
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::BadInput) throw;
@@ -168,18 +172,18 @@ void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) 
     // Not about the scene text (the command's overrides: --duration against the scene's dt):
     // the plan's args.
     if (e.where().file.empty()) fail(plan.args_at, what);
-    // Not about the scene text but a file it names (a mesh): as the loader says, with the job.
-    if (e.where().file != name) fail(e.where(), describe_job(job) + ": " + e.describe());
+    // Not about the scene text but a file it names (a mesh): where the loader says.
+    if (e.where().file != name) fail(e.where(), what);
   }
   // The scene rejects the job: find the one parameter that it rejects alone, and say whether
   // its value (the loader points inside it) or its key (unknown, or a table it lacks) is wrong.
   for (const Parameter& p : job.parameters) {
-    const std::string text = scene_text(plan, job, {p});
+    const std::string alone = scene_text(plan, job, {p});
     try {
-      check(text, name);
+      check(alone, name);
     } catch (const Error& e) {
       if (e.kind() != ErrorKind::BadInput || e.where().file != name) continue;
-      const std::optional<Placed> at = placed(text, p);
+      const std::optional<Placed> at = placed(alone, p);
       const bool value = at && inside(e.where(), at->value) && !inside(e.where(), at->key);
       fail(value ? p.from : p.key->key_at,
            describe_job(job) + ": " + e.what() +
@@ -188,7 +192,7 @@ void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) 
   }
   // Only the combination fails (dt against duration, a body inside the floor): the first key.
   try {
-    check(job_scene_text(plan, job), name);
+    check(text, name);
   } catch (const Error& e) {
     fail(job.parameters.empty() ? plan.scene_at : job.parameters.front().key->key_at,
          describe_job(job) + ": " + e.what());

@@ -185,6 +185,37 @@ TEST(JobScene, ABodyPlacedInsideTheFloorIsBlamedOnTheKey) {
   EXPECT_TRUE(e.starts_with("3:1: job 1 (body.box.position = [0.0, 0.2, 0.0]): ")) << e;
 }
 
+TEST(JobScene, AMissingMeshIsBlamedWhereTheLoaderSaysOnce) {
+  const fs::path dir = test::fresh_dir("job_scene", "missing_mesh");
+  std::ofstream(dir / "m.toml") << "[[body]]\nname = \"m\"\nshape = \"mesh\"\nmesh = "
+                                   "\"gone.obj\"\nmass = 1.0\n";
+  const Plan plan = parse_plan("scene = \"m.toml\"\n[grid]\n\"body.m.mass\" = [2.0]\n",
+                               (dir / "plan.toml").string());
+  const SceneCheck load = [](const std::string& text, const std::string& name) {
+    const Scene scene = parse_scene(text, name);
+    make_world_def(scene, load_models(scene));
+  };
+  try {
+    check_job_scene(plan, make_job(plan, 0), load);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string d = e.describe();
+    EXPECT_NE(d.find("job 0 (body.m.mass = 2.0): "), std::string::npos) << d;
+    // The location is given once, in front.
+    EXPECT_EQ(d.find(": job 0"), d.find(": "));
+  }
+}
+
+TEST(JobScene, ALineBreakInAnArgumentStaysInTheComment) {
+  const Fixture f = fixture(
+      "scene = \"drop.toml\"\nargs = [\"--out\\nx = 1\"]\n[grid]\n"
+      "\"floor.height\" = [0.0]\n",
+      "line_break");
+  const std::string text = job_scene_text(f.plan, make_job(f.plan, 0));
+  EXPECT_NO_THROW(parse_scene(text, "scene.toml")) << text;
+  EXPECT_TRUE(text.starts_with("# tumble sweep, job_00000: tumble render --out x = 1\n")) << text;
+}
+
 TEST(JobScene, APathThroughAValueIsAnError) {
   const Fixture f = fixture(R"(scene = "drop.toml"
 [grid]
