@@ -4,12 +4,17 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "tumble/diagnostics.hpp"
 #include "tumble/scene.hpp"
+
+namespace tumble {
+class EglContext;
+}
 
 namespace tumble::cli {
 
@@ -38,6 +43,9 @@ void add_common_options(CLI::App& cmd, CommonOptions& o);
 /// Loads the scene (or the default) and applies the command-line overrides; throws
 /// tumble::Error (BadInput) for a bad value.
 Scene load_scene(const CommonOptions& o);
+/// Applies the command-line overrides to a scene parsed with TimeOverrides{o.duration_s,
+/// o.dt_s} (what load_scene does after loading); throws tumble::Error (BadInput).
+void apply_overrides(Scene& scene, const CommonOptions& o);
 /// The output folder, created. Throws tumble::Error (Environment) when it cannot be.
 std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene);
 /// Registers --strict (render and simulate).
@@ -74,7 +82,28 @@ struct RenderOptions {
   bool draw_every_frame = false;  // hidden: no reuse of unchanged frames (tests compare)
 };
 void add_render_command(CLI::App& app, RenderOptions& o);
-int run_render(const RenderOptions& o);
+/// What the renders of one process share (tumble sweep): the EGL context the first one makes,
+/// current for every later one, so a job does not pay for a context (and the process loads the
+/// GL driver once).
+struct RenderSession {
+  std::unique_ptr<EglContext> gl;
+};
+/// `session`: null for a lone render (its own context), else shared with the other renders.
+int run_render(const RenderOptions& o, RenderSession* session = nullptr);
+
+struct SweepOptions {
+  std::string plan_path;
+  std::string out_dir;   // empty: out/<plan-stem>/
+  bool list = false;     // print the jobs as CSV, run nothing
+  bool collect = false;  // write sweep.csv, exit 1 naming missing or failed jobs
+  std::string shard;     // "I/N"; empty: from the scheduler's environment, else every job
+  std::optional<std::size_t> shards;  // a Kubernetes Indexed Job's completions
+  bool quiet = false;
+};
+void add_sweep_command(CLI::App& app, SweepOptions& o);
+/// Throws tumble::Error (BadInput) for a plan error, before any job runs; returns the worst
+/// job's exit code, or (--collect) 1 when a job is missing or failed.
+int run_sweep(const SweepOptions& o);
 
 void add_info_command(CLI::App& app);
 int run_info();

@@ -33,6 +33,11 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
 Scene load_scene(const CommonOptions& o) {
   Scene scene = o.scene_path.empty() ? default_scene()
                                      : load_scene_file(o.scene_path, {o.duration_s, o.dt_s});
+  apply_overrides(scene, o);
+  return scene;
+}
+
+void apply_overrides(Scene& scene, const CommonOptions& o) {
   SimulationSettings& sim = scene.simulation;
   if (o.duration_s) {
     if (!std::isfinite(*o.duration_s) || *o.duration_s <= 0.0 || *o.duration_s > 1e6)
@@ -76,7 +81,6 @@ Scene load_scene(const CommonOptions& o) {
     scene.render.width = static_cast<int>(w);
     scene.render.height = static_cast<int>(h);
   }
-  return scene;
 }
 
 void add_strict_option(CLI::App& cmd, CommonOptions& o) {

@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   cli::add_simulate_command(app, simulate);
   cli::StudyOptions study;
   cli::add_study_command(app, study);
+  cli::SweepOptions sweep;
+  cli::add_sweep_command(app, sweep);
   cli::add_info_command(app);
   cli::DiffOptions diff;
   cli::add_diff_command(app, diff);
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return cli::run_render(render);
     if (app.got_subcommand("simulate")) return cli::run_simulate(simulate);
     if (app.got_subcommand("study")) return cli::run_study(study);
+    if (app.got_subcommand("sweep")) return cli::run_sweep(sweep);
     if (app.got_subcommand("info")) return cli::run_info();
     if (app.got_subcommand("diff")) return cli::run_diff(diff);
   } catch (const cli::Interrupted& i) {

@@ -84,7 +84,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->group("");
 }
 
-int run_render(const RenderOptions& o) {
+int run_render(const RenderOptions& o, RenderSession* session) {
   const auto start = Clock::now();
   Scene scene = load_scene(o.common);
   if (o.msaa) {
@@ -138,7 +138,11 @@ int run_render(const RenderOptions& o) {
 
   const fs::path dir = output_dir(o.common, scene);
   if (o.png) make_output_dir(dir / "frames");
-  EglContext gl(o.egl_device.value_or(-1));
+  // A sweep renders all its jobs in one context; a lone render makes its own.
+  std::unique_ptr<EglContext> own_gl;
+  std::unique_ptr<EglContext>& gl_slot = session ? session->gl : own_gl;
+  if (!gl_slot) gl_slot = std::make_unique<EglContext>(o.egl_device.value_or(-1));
+  const EglContext& gl = *gl_slot;
   Renderer renderer(scene, Renderer::Readback::Auto, &models,
                     o.transparent ? Backdrop::Transparent : Backdrop::Sky);
 

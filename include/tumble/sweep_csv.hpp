@@ -1,0 +1,25 @@
+#pragma once
+/// The CSV tables of `tumble sweep` (RFC 4180 quoting): the job list of `--list`, and
+/// sweep.csv of `--collect`, one row per job with its parameters, state and key figures.
+
+#include <string>
+#include <vector>
+
+#include "tumble/job_folder.hpp"
+#include "tumble/sweep.hpp"
+
+namespace tumble::sweep {
+
+/// "job,<key path>,...", then one row per job: its index and each parameter's value (TOML text;
+/// a string without its quotes).
+std::string job_list_csv(const Plan& plan, const std::vector<Job>& jobs);
+
+/// sweep.csv: the job list's columns, then status, exit_code, energy_start_J, energy_end_J,
+/// contacts, wall_s, outputs ("path=sha256" separated by ';'), error. `records[i]` is job i's.
+std::string sweep_csv(const Plan& plan, const std::vector<Job>& jobs,
+                      const std::vector<JobRecord>& records);
+
+/// A CSV field: as is, or in double quotes (doubled inside) when it holds , " or a line break.
+std::string csv_field(std::string_view text);
+
+}  // namespace tumble::sweep
