@@ -55,6 +55,14 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
+  /// Points this renderer at another scene drawn in the same format (size, antialias, msaa,
+  /// backdrop), keeping its shaders, framebuffers and buffers: a sweep's jobs one after another.
+  /// Returns false and changes nothing when the format differs, when either scene has mesh
+  /// bodies (their models are uploaded per scene), or while a readback is in flight; then build
+  /// a new Renderer. Afterwards it draws exactly what a new Renderer for `scene` would.
+  bool reuse_for(const Scene& scene, const SceneModels* models = nullptr,
+                 Backdrop backdrop = Backdrop::Sky);
+
   /// Renders the bodies of `world` (in scene order) as they are now.
   void draw(const World& world);
   /// Renders several exposures into one picture (at least one), seen by the camera of the last

@@ -14,7 +14,8 @@
 
 namespace tumble {
 class EglContext;
-}
+class Renderer;
+}  // namespace tumble
 
 namespace tumble::cli {
 
@@ -74,19 +75,21 @@ struct RenderOptions {
   std::string encoder = "auto";
   std::optional<int> egl_device;
   // Documentation figures.
-  std::optional<int> strobe;  // strobe.png with N poses
-  std::string strobe_span;    // "A:B"; empty: the whole run
-  bool transparent = false;   // PNG, GIF and WebP outputs with a transparent background
-  bool gif = false;           // clip.gif
-  bool webp = false;          // clip.webp
+  std::optional<int> strobe;      // strobe.png with N poses
+  std::string strobe_span;        // "A:B"; empty: the whole run
+  bool transparent = false;       // PNG, GIF and WebP outputs with a transparent background
+  bool gif = false;               // clip.gif
+  bool webp = false;              // clip.webp
   bool draw_every_frame = false;  // hidden: no reuse of unchanged frames (tests compare)
 };
 void add_render_command(CLI::App& app, RenderOptions& o);
 /// What the renders of one process share (tumble sweep): the EGL context the first one makes,
 /// current for every later one, so a job does not pay for a context (and the process loads the
-/// GL driver once).
+/// GL driver once), and the last Renderer, reused (shaders, framebuffers) by a job drawn in the
+/// same format (Renderer::reuse_for). The renderer goes before the context it was made in.
 struct RenderSession {
   std::unique_ptr<EglContext> gl;
+  std::unique_ptr<Renderer> renderer;
 };
 /// `session`: null for a lone render (its own context), else shared with the other renders.
 int run_render(const RenderOptions& o, RenderSession* session = nullptr);

@@ -143,8 +143,15 @@ int run_render(const RenderOptions& o, RenderSession* session) {
   std::unique_ptr<EglContext>& gl_slot = session ? session->gl : own_gl;
   if (!gl_slot) gl_slot = std::make_unique<EglContext>(o.egl_device.value_or(-1));
   const EglContext& gl = *gl_slot;
-  Renderer renderer(scene, Renderer::Readback::Auto, &models,
-                    o.transparent ? Backdrop::Transparent : Backdrop::Sky);
+  // A sweep's next job in the same format reuses the last one's renderer.
+  const Backdrop backdrop = o.transparent ? Backdrop::Transparent : Backdrop::Sky;
+  std::unique_ptr<Renderer> own_renderer;
+  std::unique_ptr<Renderer>& renderer_slot = session ? session->renderer : own_renderer;
+  if (!renderer_slot || !renderer_slot->reuse_for(scene, &models, backdrop)) {
+    renderer_slot.reset();  // its GL objects go before the new ones are made
+    renderer_slot = std::make_unique<Renderer>(scene, Renderer::Readback::Auto, &models, backdrop);
+  }
+  Renderer& renderer = *renderer_slot;
 
   // The sinks: every clip frame to the clip sinks; each still and the strobe is a picture.
   const long clip_frames = want_clip ? frames : 0;

@@ -14,6 +14,7 @@
 #include "tumble/egl_context.hpp"
 #include "tumble/job_folder.hpp"
 #include "tumble/job_scene.hpp"
+#include "tumble/renderer.hpp"  // RenderSession keeps one
 #include "tumble/sha256.hpp"
 #include "tumble/shard.hpp"
 #include "tumble/sweep.hpp"

@@ -43,7 +43,7 @@ Vec3 floor_tile_color(const Vec3& albedo_srgb, const Vec3& light) {
 }  // namespace
 
 struct Renderer::Impl {
-  const Scene& scene;
+  Scene scene;  // a copy: reuse_for() points a built renderer at the next scene
   const SceneModels* models;
   std::vector<Mesh> model_meshes;        // per body: its model's triangles (vao 0 for other shapes)
   std::vector<Vec3> model_lo, model_hi;  // per mesh body: its model's bounding box, model frame
@@ -72,6 +72,17 @@ struct Renderer::Impl {
         height(s.render.height),
         antialias(s.render.antialias),
         backdrop(b) {}
+
+  // The picture format the framebuffers and programs were built for (what the scene asked).
+  bool same_format(const Scene& s, Backdrop b) const {
+    return s.render.width == scene.render.width && s.render.height == scene.render.height &&
+           s.render.antialias == scene.render.antialias && s.render.msaa == scene.render.msaa &&
+           b == backdrop;
+  }
+  static bool has_meshes(const Scene& s) {
+    return std::any_of(s.bodies.begin(), s.bodies.end(),
+                       [](const BodySpec& b) { return b.shape == Shape::Mesh; });
+  }
 
   ~Impl() {
     for (Mesh* m : {&cube, &sphere, &floor}) m->release();
@@ -562,6 +573,21 @@ Renderer::Renderer(const Scene& scene, Readback readback, const SceneModels* mod
     : impl_(std::make_unique<Impl>(scene, models, backdrop)) {
   impl_->build();
   impl_->setup_readback(readback);
+}
+bool Renderer::reuse_for(const Scene& scene, const SceneModels* models, Backdrop backdrop) {
+  Impl& m = *impl_;
+  // Mesh bodies have their models uploaded per scene; a readback still in flight belongs to
+  // the old scene's frame.
+  if (!m.same_format(scene, backdrop) || Impl::has_meshes(scene) || Impl::has_meshes(m.scene) ||
+      m.begun != m.finished)
+    return false;
+  m.scene = scene;
+  m.models = models;
+  // No mesh bodies: every body draws the shared cube or sphere (empty model entries).
+  m.model_meshes.assign(scene.bodies.size(), Mesh{});
+  m.model_lo.assign(scene.bodies.size(), Vec3::Constant(-0.5));
+  m.model_hi.assign(scene.bodies.size(), Vec3::Constant(0.5));
+  return true;
 }
 void Renderer::begin_readback() {
   impl_->begin_readback();

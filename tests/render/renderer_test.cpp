@@ -190,3 +190,48 @@ TEST(Renderer, AsynchronousReadbackReturnsTheSameFramesInOrder) {
 
 }  // namespace
 }  // namespace tumble
+
+namespace tumble {
+namespace {
+
+// A sweep draws its jobs one after another with one renderer where their format agrees: after
+// reuse_for() it must draw exactly (bit for bit) what a new renderer for that scene draws.
+TEST(RendererReuse, AnotherSceneInTheSameFormatDrawsWhatANewRendererDraws) {
+  EglContext gl;
+  const Scene first = small_scene();
+  Scene second = small_scene();
+  second.bodies[0].color = Color{0x20, 0x40, 0xff};
+  second.bodies[0].position = Vec3(-1.0, 0.8, 0.5);
+  second.camera.position = Vec3(3.0, 2.0, 7.0);
+  second.light.direction = Vec3(0.5, -1.0, -0.2);
+  second.floor = FloorSettings{};
+  Renderer reused(first);
+  reused.draw(World(make_world_def(first)));
+  const Image before = reused.read_image();
+  ASSERT_TRUE(reused.reuse_for(second));
+  reused.draw(World(make_world_def(second)));
+  const Image after = reused.read_image();
+  Renderer fresh(second);
+  fresh.draw(World(make_world_def(second)));
+  const Image expected = fresh.read_image();
+  EXPECT_TRUE(after.pixels == expected.pixels) << "a reused renderer draws another picture";
+  EXPECT_FALSE(after.pixels == before.pixels);
+}
+
+TEST(RendererReuse, AnotherFormatIsRefused) {
+  EglContext gl;
+  const Scene first = small_scene();
+  Renderer r(first);
+  Scene bigger = small_scene();
+  bigger.render.width = 320;
+  EXPECT_FALSE(r.reuse_for(bigger));
+  Scene msaa = small_scene();
+  msaa.render.antialias = Antialias::Msaa;
+  msaa.render.msaa = 4;
+  EXPECT_FALSE(r.reuse_for(msaa));
+  EXPECT_FALSE(r.reuse_for(first, nullptr, Backdrop::Transparent));
+  EXPECT_TRUE(r.reuse_for(first));
+}
+
+}  // namespace
+}  // namespace tumble
