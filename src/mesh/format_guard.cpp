@@ -169,6 +169,31 @@ std::string guard_collada(const std::filesystem::path& file) {
       }
     }
   }
+  // Index lists (<p>, <v>, <vcount>, <h>) are lists of unsigned integers in the schema; assimp
+  // 5.2.5 reads one with a stray character in it into a count it then allocates for (4.8 GB from
+  // a one-bit change of '5' to '=', found by fuzz_mesh in CI). Only digits and white space.
+  for (const std::string_view tag : {"<p", "<v", "<vcount", "<h"}) {
+    for (std::size_t at = text.find(tag); at != std::string::npos; at = text.find(tag, at + 1)) {
+      const std::size_t after = at + tag.size();
+      if (after < text.size() && text[after] != ' ' && text[after] != '\t' && text[after] != '\n' &&
+          text[after] != '\r' && text[after] != '>' && text[after] != '/')
+        continue;  // a longer element name (<param>, <vertices>, ...)
+      const std::size_t open_end = text.find('>', after);
+      if (open_end == std::string::npos) break;
+      if (text[open_end - 1] == '/') continue;  // <p/>: empty
+      const std::size_t close = text.find('<', open_end + 1);
+      const std::size_t stop = close == std::string::npos ? text.size() : close;
+      for (std::size_t i = open_end + 1; i < stop; ++i) {
+        const char c = text[i];
+        if ((c >= '0' && c <= '9') || c == ' ' || c == '\t' || c == '\n' || c == '\r') continue;
+        const std::size_t line = 1 + static_cast<std::size_t>(std::count(
+                                         text.begin(), text.begin() + static_cast<long>(i), '\n'));
+        return "malformed COLLADA: the " + std::string(tag.substr(1)) + " index list on line " +
+               std::to_string(line) + " holds \"" + std::string(1, c) +
+               "\" (the COLLADA schema allows unsigned integers only)";
+      }
+    }
+  }
   return "";
 }
 
