@@ -9,6 +9,11 @@
 /// its shadow, the translucent ones blended back to front over the opaque ones, in one pass.
 /// With a transparent backdrop the background is alpha 0, the floor fades into transparency
 /// instead of into the sky, and shadows, translucent poses and anti-aliased edges carry alpha.
+///
+/// Only what changed is drawn: while the camera and the floor stay where they were for the
+/// last picture, a picture is drawn (under a scissor) only inside the screen rectangles of the
+/// bodies and shadows of the last picture and this one; the rest of the framebuffer already
+/// holds it. OpenGL's invariance rules make that the same bytes as a full redraw.
 
 #include <cstdint>
 #include <memory>
@@ -69,6 +74,13 @@ class Renderer {
   /// one (camera.follow). Each exposure's shadow darkens the floor once; translucent bodies are
   /// sorted back to front by their centres and each shows only its nearest surface.
   void draw(std::span<const Exposure> exposures);
+  /// A picture is drawn in full only where it can differ from the last one: while the camera
+  /// and the floor stay put, the rectangles of the bodies and their shadows in both (the same
+  /// bytes as drawing it all). `true`: every picture from scratch, the reference that claim is
+  /// tested against.
+  void redraw_in_full(bool on);
+  /// The share of the frame's pixels the last draw() drew, in (0, 1].
+  double redrawn_share() const;
   /// Reads the last drawn frame into `rgba` (resized) as RGBA rows, bottom-up as OpenGL returns
   /// them: straight into the caller's buffer, no copy. Premultiplied alpha (Transparent), or
   /// alpha 255 everywhere (Sky).

@@ -12,7 +12,8 @@
 // A clip frame whose bodies are all in the same pose (bit for bit) as in the last drawn frame is
 // not drawn or read back: the encoder thread hands its sinks the previous pixels again, marked as
 // a repeat (the MP4 then skips conversion too). The renderer is a pure function of the poses, so
-// the output is the same bytes as drawing every frame (tested with --draw-every-frame).
+// the output is the same bytes as drawing every frame (tested with --draw-every-frame, which
+// also makes the renderer draw each frame in full rather than only where bodies moved).
 
 #include <vector>
 

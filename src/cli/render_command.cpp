@@ -80,7 +80,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_flag("--webp", o.webp, "Also write clip.webp (animated WebP, looping)");
   // Hidden (no group): the reference the tests compare skipping of unchanged frames against.
   cmd->add_flag("--draw-every-frame", o.draw_every_frame,
-                "Draw every clip frame, even when nothing moved (the same output, slower)")
+                "Draw every clip frame in full, even where nothing moved (the same output, slower)")
       ->group("");
 }
 
@@ -152,6 +152,7 @@ int run_render(const RenderOptions& o, RenderSession* session) {
     renderer_slot = std::make_unique<Renderer>(scene, Renderer::Readback::Auto, &models, backdrop);
   }
   Renderer& renderer = *renderer_slot;
+  renderer.redraw_in_full(o.draw_every_frame);  // the reference: nothing reused
 
   // The sinks: every clip frame to the clip sinks; each still and the strobe is a picture.
   const long clip_frames = want_clip ? frames : 0;
