@@ -150,6 +150,7 @@ class World {
 
  private:
   void advance_body(std::size_t body, double h);
+  std::string smaller_step_fix() const;
   // The body's integrator settings, with its controller state (adaptive).
   Stepping stepping(std::size_t body) const;
   // Integrates body i over h from s (trial states of impact searches included).
