@@ -183,7 +183,28 @@ double resolve_impact(RigidBody& b, const ContactSet& c, double rest_speed, doub
     b.state = before;
     solve(false);
   }
-  if (mu > 0.0) apply_friction(b, c, normal_impulse, mu);
+  if (mu > 0.0) {
+    apply_friction(b, c, normal_impulse, mu);
+    // A tangential impulse at one point also moves the points along the normal (the body
+    // turns): it can leave one approaching again, which a held contact would then carry into
+    // the floor (and the lift out would gain m g times the depth). A last inelastic normal pass
+    // stops every approach; it is a projection in the kinetic metric, so it only dissipates.
+    // Impulses change P and L, not R: the points and the matrix are those of the first pass.
+    const Vec3 w = b.angular_velocity();
+    LcpVector again(n);
+    bool approach = false;
+    for (int i = 0; i < n; ++i) {
+      again(i) = point_velocity(b, w, r[i]).y();
+      approach |= again(i) < 0.0;
+    }
+    if (approach) {
+      const LcpVector j = solve_lcp(A, again);
+      for (int i = 0; i < n; ++i) {
+        normal_impulse[i] += j(i);
+        apply_impulse(b, r[i], j(i) * Vec3::UnitY());
+      }
+    }
+  }
   return kinetic_energy(b) - e_before;
 }
 
