@@ -95,32 +95,58 @@ Eigen::Matrix3d symmetric_cofactors(const Eigen::Matrix3d& a) {
 }  // namespace
 
 bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
-  // Frictionless only: with no tangential force, the motion depends on the contact forces only
-  // through their resultant wrench — the force N along the normal n = +y at the centre of
-  // pressure p, i.e. F = N n and τ = p × N n = (Mx, 0, Mz) with Mx = −N p_z, Mz = N p_x — which
-  // is unique when >= 3 non-collinear points hold, whereas the point forces (what the LCP
-  // returns) are not. So instead of the 4-point LCP of a box on its face, a 3×3 solve.
+  // Without friction the motion depends on the contact forces only through their resultant
+  // wrench — the force N along the normal n = +y at the centre of pressure p, i.e. F = N n and
+  // τ = p × N n — which is unique when >= 3 non-collinear points hold, whereas the point forces
+  // (what the LCP returns) are not. So instead of the 4-point LCP of a box on its face, a 3×3
+  // solve. The same holds for a face that slides without turning: every point's force then acts
+  // along the same e = n + d (d = −mu û, one slip direction û), so F = N e and τ = P × e with
+  // P = Σ f_i r_i = (P_x, N r_y, P_z), the points being at one height r_y below the centre.
   const int n = resting_->count;
   if (n < 3 || body_.is_particle() || forces_.general_contact_only) return false;
-  for (int i = 0; i < n; ++i)
-    if (resting_->sliding[i] && resting_->friction > 0.0) return false;
   const auto idx = resting_->indices();
+  Vec3 r[ContactSet::kMaxPoints];
+  for (int i = 0; i < n; ++i) r[i] = k.R * body_.vertices()[idx[i]];
+  Vec3 d = Vec3::Zero();
+  if (resting_->friction > 0.0 && resting_->sliding[0]) {
+    // One slip direction and one height, to 1e-12 (of mu, of the body's extent): closer than
+    // the LCP's own round-off-level tolerances, so its solution is this one.
+    d = friction_direction(k, r[0], 0);
+    double reach = 0.0;
+    for (int i = 0; i < n; ++i) reach = std::max(reach, r[i].norm());
+    for (int i = 1; i < n; ++i)
+      if (!resting_->sliding[i] ||
+          (friction_direction(k, r[i], i) - d).cwiseAbs().maxCoeff() > 1e-12 * resting_->friction ||
+          std::abs(r[i].y() - r[0].y()) > 1e-12 * reach)
+        return false;
+  } else if (resting_->friction > 0.0) {
+    for (int i = 0; i < n; ++i)
+      if (resting_->sliding[i]) return false;  // some slide, some stick: the LCP
+  }
   const double inv_m = body_.inverse_mass();
   const Vec3 a_cm = k.F * inv_m;
   const Vec3 alpha = k.Iinv * (k.tau - k.omega.cross(s.L));
   const Mat3& G = k.Iinv;
-  // Normal acceleration of point i: b_i + J_i · (N, Mx, Mz), with
-  // J_i = (1/m, (G e_x × r_i)_y, (G e_z × r_i)_y) and (a × r)_y = a_z r_x − a_x r_z.
+  // Unknowns w = (N, P_x, P_z); the contact torque is τ = T w with, for e = (d_x, 1, d_z),
+  // τ_x = N r_y d_z − P_z, τ_y = P_z d_x − P_x d_z, τ_z = P_x − N r_y d_x.
+  const double ry = r[0].y();
+  Eigen::Matrix3d T;
+  T << ry * d.z(), 0.0, -1.0,  //
+      0.0, -d.z(), d.x(),      //
+      -ry * d.x(), 1.0, 0.0;
+  const Eigen::Matrix3d GT = G * T;
+  // Normal acceleration of point i: b_i + J_i · w, J_i = (1/m, 0, 0) + r_ix (GT)_z − r_iz (GT)_x
+  // (the y component of α × r_i is α_z r_x − α_x r_z; friction moves the centre sideways only).
   Eigen::Matrix3d JtJ = Eigen::Matrix3d::Zero();
   Vec3 Jtb = Vec3::Zero();
   PlanePoint points[ContactSet::kMaxPoints], hull[2 * ContactSet::kMaxPoints + 1];
   double extent = 0.0;
   for (int i = 0; i < n; ++i) {
-    const Vec3 r = k.R * body_.vertices()[idx[i]];
-    points[i] = {r.x(), r.z(), i};
-    extent = std::max({extent, std::abs(r.x()), std::abs(r.z())});
-    const double b = a_cm.y() + alpha.cross(r).y() + k.omega.cross(k.omega.cross(r)).y();
-    const Vec3 J(inv_m, G(2, 0) * r.x() - G(0, 0) * r.z(), G(2, 2) * r.x() - G(0, 2) * r.z());
+    points[i] = {r[i].x(), r[i].z(), i};
+    extent = std::max({extent, std::abs(r[i].x()), std::abs(r[i].z())});
+    const double b = a_cm.y() + alpha.cross(r[i]).y() + k.omega.cross(k.omega.cross(r[i])).y();
+    const Vec3 J =
+        Vec3(inv_m, 0.0, 0.0) + (r[i].x() * GT.row(2) - r[i].z() * GT.row(0)).transpose();
     JtJ += J * J.transpose();
     Jtb += J * b;
   }
@@ -140,11 +166,10 @@ bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
   // points' convex hull, by a margin of 1e-9 of their extent: then non-negative point forces
   // realise the wrench and every point's acceleration is zero — the LCP's solution. On or
   // outside an edge the body tips: the general LCP decides which points stay.
-  const double cx = w(2) / N, cz = -w(1) / N;
+  const double cx = w(1) / N, cz = w(2) / N;
   if (!strictly_inside(hull, support_polygon(points, n, hull), cx, cz, 1e-9 * extent)) return false;
-  k.F.y() += N;
-  k.tau.x() += w(1);
-  k.tau.z() += w(2);
+  k.F += N * (Vec3::UnitY() + d);
+  k.tau += T * w;
   return true;
 }
 

@@ -81,8 +81,8 @@ class BodyDynamics {
   };
   Kinematics kinematics(const BodyState& s) const;
   void solve_contacts(const BodyState& s, const Kinematics& k, double* f) const;
-  // The resting-face fast path: when >= 3 frictionless held points keep their normal
-  // accelerations at zero with a contact wrench whose centre of pressure lies inside their
+  // The resting-face fast path: when >= 3 held points, frictionless or all sliding one way at one
+  // height (a face sliding without turning), keep their normal accelerations at zero with a contact wrench whose centre of pressure lies inside their
   // support polygon, adds that wrench to k and returns true; else leaves k and returns false.
   bool add_face_wrench(const BodyState& s, Kinematics& k) const;
   Vec3 friction_direction(const Kinematics& k, const Vec3& r, int point) const;
