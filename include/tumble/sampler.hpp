@@ -23,7 +23,8 @@ class Sampler {
   World& world_;
 };
 
-/// Number of samples of a run of `duration` at `rate` Hz: k = 0 … round(duration·rate) inclusive.
+/// Number of samples of a run of `duration` at `rate` Hz: every t = k / rate < duration (k >= 0),
+/// then t = duration itself (SPEC "Time").
 long sample_count(double duration_s, double rate_hz);
 /// Number of fixed steps that cover `duration` (the last may be sampled part-way).
 long step_count_for(double duration_s, double dt_s);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "tumble/csv_field.hpp"
 #include "tumble/job_folder.hpp"
 #include "tumble/sweep.hpp"
 
@@ -19,7 +20,6 @@ std::string job_list_csv(const Plan& plan, const std::vector<Job>& jobs);
 std::string sweep_csv(const Plan& plan, const std::vector<Job>& jobs,
                       const std::vector<JobRecord>& records);
 
-/// A CSV field: as is, or in double quotes (doubled inside) when it holds , " or a line break.
-std::string csv_field(std::string_view text);
+using tumble::csv_field;  // a CSV field, quoted where it must be (csv_field.hpp)
 
 }  // namespace tumble::sweep

@@ -60,7 +60,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   add_strict_option(*cmd, o.common);
   cmd->add_flag("--png", o.png, "Also write every frame as frames/frame_NNNNN.png");
   cmd->add_flag("--no-mp4", o.no_mp4, "Do not write clip.mp4");
-  cmd->add_option("--still", o.stills, "Write still_<T>.png of the state at time T (repeatable)");
+  // One time per --still (repeatable), so a scene path after it is not taken for a time.
+  cmd->add_option("--still", o.stills, "Write still_<T>.png of the state at time T (repeatable)")
+      ->allow_extra_args(false);
   cmd->add_option("--crf", o.crf, "H.264 quality, 0 (lossless) to 51 (default 23)");
   cmd->add_option("--antialias", o.antialias, "fxaa (default), msaa or none (overrides the scene)");
   cmd->add_option("--msaa", o.msaa,

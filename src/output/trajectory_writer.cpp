@@ -2,6 +2,8 @@
 
 #include <charconv>
 
+#include "tumble/csv_field.hpp"
+
 namespace tumble {
 namespace {
 
@@ -32,7 +34,7 @@ void TrajectoryWriter::write(double t, const World& world) {
     line_.clear();
     append(line_, t);
     line_ += ',';
-    line_ += b.name();
+    line_ += csv_field(b.name());  // a name may hold a comma, a quote, a line break
     for (double x : {b.state.x.x(), b.state.x.y(), b.state.x.z(), q.w(), q.x(), q.y(), q.z(), v.x(),
                      v.y(), v.z(), w.x(), w.y(), w.z(), world.energy(i)}) {
       line_ += ',';

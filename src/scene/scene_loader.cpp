@@ -85,11 +85,9 @@ RenderSettings read_render(const toml::table& table, const std::string& file) {
   // Samples per pixel, 0 = off. What a driver offers is known only at render time (llvmpipe:
   // up to 4), so this checks only for plausibility.
   s.msaa = r.integer("msaa", 0, 16).value_or(s.msaa);
-  // A scene that sets msaa alone asks for multisampling (SPEC's key); antialias says it outright.
+  // msaa is the sample count used when antialias = "msaa" (SPEC); alone it changes nothing.
   if (const auto i = r.choice("antialias", kAntialiasNames))
     s.antialias = static_cast<Antialias>(*i);  // kAntialiasNames is in enum order
-  else if (r.has("msaa"))
-    s.antialias = s.msaa > 1 ? Antialias::Msaa : Antialias::None;
   s.background = r.color("background").value_or(s.background);
   return s;
 }

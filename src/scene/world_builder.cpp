@@ -69,13 +69,10 @@ SceneModels load_models(const Scene& scene) {
     try {
       models.bodies[i] = std::make_shared<const MeshBody>(load_mesh_body(spec.mesh, options));
     } catch (const Error& e) {
-      // The error points into the model file; say which body of which scene named it, too.
-      const SourceLocation& at = spec.mesh_where;
-      throw Error(e.kind(),
-                  std::string(e.what()) + " [the mesh of body \"" + spec.name + "\", " +
-                      at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) +
-                      "]",
-                  e.where());
+      // FILE:LINE:COLUMN of the scene's `mesh` key (SPEC's error form), then what is wrong in
+      // the model file, with its own path (and line, where the format has one).
+      throw Error(e.kind(), "the mesh of body \"" + spec.name + "\": " + e.describe(),
+                  spec.mesh_where);
     }
   }
   return models;

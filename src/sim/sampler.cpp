@@ -1,5 +1,6 @@
 #include "tumble/sampler.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -26,7 +27,12 @@ World Sampler::at(double t) {
 }
 
 long sample_count(double duration_s, double rate_hz) {
-  return std::lround(duration_s * rate_hz) + 1;
+  // Every k >= 0 with k / rate < duration (the division as the sample times compute it), then
+  // the end itself.
+  long n = std::max(0L, static_cast<long>(std::ceil(duration_s * rate_hz)));
+  while (n > 0 && static_cast<double>(n - 1) / rate_hz >= duration_s) --n;
+  while (static_cast<double>(n) / rate_hz < duration_s) ++n;
+  return n + 1;
 }
 
 long step_count_for(double duration_s, double dt_s) {

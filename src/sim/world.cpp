@@ -93,6 +93,7 @@ World::World(const WorldDef& def) : def_(def) {
     flight_start_known_.push_back(true);
   }
   controllers_.resize(bodies_.size());
+  for (std::size_t i = 0; i < bodies_.size(); ++i) check_finite(i);  // the start is written too
 }
 
 bool same_poses(const World& a, const World& b) {
@@ -178,17 +179,30 @@ void World::keep_step(std::size_t i, const StepInfo& info) {
           smaller_step_fix());
 }
 
+void World::check_finite(std::size_t i) const {
+  const RigidBody& b = bodies_[i];
+  // The state, and what outputs derive from it (velocities, energy): a finite state whose
+  // energy overflows (a speed of 1e155 m/s) must not write inf either.
+  if (finite(b.state) && b.velocity().allFinite() && b.angular_velocity().allFinite() &&
+      std::isfinite(b.energy(def_.gravity)))
+    return;
+  if (steps_ == 0 && time_ == 0.0)
+    throw Error(ErrorKind::BadInput, "the starting state of body \"" + b.name() +
+                                         "\" is beyond double precision (its energy overflows); "
+                                         "check masses, sizes and velocities for extreme values");
+  const bool high_order =
+      def_.integrator == Integrator::Rk4 || def_.integrator == Integrator::Adaptive;
+  throw Error(ErrorKind::BadInput,
+              "the state of body \"" + b.name() +
+                  "\" stopped being finite near t = " + fmt("%.6g", time_) + " s (integrator " +
+                  std::string(to_string(def_.integrator)) + ", dt = " + fmt("%.3g", def_.dt_s) +
+                  " s); " + (high_order ? "use" : "use rk4 or adaptive, or") +
+                  " a smaller dt, and check masses, sizes and velocities for extreme values");
+}
+
 void World::check_state(std::size_t i) {
+  check_finite(i);
   RigidBody& b = bodies_[i];
-  if (!finite(b.state)) {
-    const double t = time_;
-    throw Error(ErrorKind::BadInput,
-                "the state of body \"" + b.name() +
-                    "\" stopped being finite near t = " + fmt("%.6g", t) + " s (integrator " +
-                    std::string(to_string(def_.integrator)) + ", dt = " + fmt("%.3g", def_.dt_s) +
-                    " s); use rk4 or adaptive, or a smaller dt, and check masses, sizes and "
-                    "velocities for extreme values");
-  }
   if (b.is_particle()) return;
   const double turn = def_.dt_s * b.angular_velocity().norm();
   const double limit = max_turn_per_step(def_.integrator);

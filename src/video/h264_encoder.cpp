@@ -5,6 +5,7 @@ extern "C" {
 #include <libavutil/log.h>
 }
 
+#include <algorithm>
 #include <array>
 #include <cstdarg>
 #include <cstdio>
@@ -20,6 +21,12 @@ namespace {
 // hardware or its driver they fail to open, which is the normal case and not reported.
 constexpr std::array<const char*, 3> kHardwareEncoders = {"h264_nvenc", "h264_vaapi", "h264_qsv"};
 constexpr const char* kSoftwareEncoder = "libx264";
+// The H.264 encoders FFmpeg can be built with (libavcodec's names): one of these that the
+// running FFmpeg does not have is "encoder missing", not a typing mistake.
+constexpr std::array<std::string_view, 14> kKnownH264Encoders = {
+    "libx264",  "libx264rgb",      "libopenh264",       "h264_amf",     "h264_nvenc",
+    "h264_qsv", "h264_vaapi",      "h264_videotoolbox", "h264_v4l2m2m", "h264_omx",
+    "h264_mf",  "h264_mediacodec", "h264_vulkan",       "nvenc_h264"};
 
 // Frames in a VAAPI upload pool: the encoder holds a few in flight (reference + lookahead).
 constexpr int kHardwarePoolFrames = 20;
@@ -182,6 +189,14 @@ H264Encoder open_h264_encoder(const Mp4Settings& settings, bool global_header) {
   }
 
   const AVCodec* codec = avcodec_find_encoder_by_name(settings.encoder.c_str());
+  // An H.264 encoder that FFmpeg has but this build lacks is missing from the environment
+  // (exit 3); any other name is a mistake on the command line (exit 2).
+  if (!codec && std::find(std::begin(kKnownH264Encoders), std::end(kKnownH264Encoders),
+                          std::string_view(settings.encoder)) != std::end(kKnownH264Encoders))
+    throw Error(ErrorKind::Environment,
+                "encoder \"" + settings.encoder +
+                    "\" is missing: this FFmpeg was built without it; use auto or one of: " +
+                    joined(h264_encoder_names()));
   const std::optional<InputPlan> plan =
       is_h264_video_encoder(codec) ? plan_input(codec) : std::nullopt;
   if (!plan)

@@ -118,6 +118,9 @@ Mp4Writer::Impl::Impl(const fs::path& path, const Mp4Settings& s)
                 "cannot write \"" + final_path.string() + "\": " + av_error_text(result));
   AvOptions options;
   options.set("movflags", "+faststart");  // moov before mdat: playable while downloading
+  // The movie's own clock (mvhd, tkhd, the edit list) ticks in 1/(1000 fps) s rather than the
+  // muxer's default milliseconds, so the container says N / fps exactly, as the stream does.
+  options.set("movie_timescale", std::to_string(1000L * settings.fps));
   result = avformat_write_header(muxer.get(), options.get());
   if (result < 0) fail_writing("MP4 header", result);
 }

@@ -85,6 +85,33 @@ TEST(Diagnostics, TrustworthyRunIsCleanAndStrictPasses) {
   EXPECT_GT(j["counts"]["derivative_evaluations"].get<long>(), 4 * 2400);
 }
 
+TEST(Diagnostics, AStateWhoseEnergyOverflowsIsRefusedBeforeAnythingIsWritten) {
+  // Every field is finite and in range, but ½ m v² at 1e155 m/s is not: no inf or nan may reach
+  // trajectory.csv or run.json, so the run ends with exit 2 (render too).
+  const TestDir dir;
+  write_scene(dir.path(), "fast.toml", R"([simulation]
+duration = 0.1
+[[body]]
+name = "fast"
+shape = "box"
+size = [1.0, 1.0, 1.0]
+mass = 1.0
+position = [0.0, 3.0, 0.0]
+velocity = [1e155, 0.0, 0.0]
+)");
+  for (const char* command : {"simulate", "render"}) {
+    const RunResult r =
+        run_tumble({command, "fast.toml", "--out", "o", "--size", "64x48"}, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    EXPECT_NE(r.err.find("tumble: error: the starting state of body \"fast\" is beyond double "
+                         "precision"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o/run.json"));
+    EXPECT_FALSE(fs::exists(dir / "o/trajectory.csv"));
+  }
+}
+
 TEST(Diagnostics, ANonFiniteStateEndsTheRunWithExit2AndNoOutputs) {
   // Stiff drag (c dt / m = 1000) under explicit Euler: the speed grows 999-fold each step.
   const TestDir dir;

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <map>
 #include <regex>
+#include <tuple>
 #include <utility>
 
 #include "figures_formats.hpp"
@@ -191,6 +192,24 @@ TEST(Render, EncoderLibx264ByName) {
   EXPECT_EQ(read_json(dir / "o/run.json")["encoder"], "libx264");
 }
 
+// SPEC: an MP4 of N frames lasts exactly N / fps, in the container too (mvhd, which players
+// and ffprobe's format duration read): 7 frames at 60 fps are 0.1166… s, not the 0.117 that a
+// millisecond movie clock would give, and 4 frames at 7 fps 0.571428… s.
+TEST(Render, ClipDurationIsExactlyFramesOverFpsInTheContainer) {
+  const TestDir dir;
+  for (const auto& [fps, duration, frames] :
+       {std::tuple{"60", "0.11667", 7}, std::tuple{"7", "0.5", 4}}) {
+    const std::string out = std::string("o") + fps;
+    const RunResult r = run_tumble(
+        args({"render", "--fps", fps, "--duration", duration, "--out", out}, kSmall), dir.path());
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    auto p = probe(dir / out / "clip.mp4");
+    EXPECT_EQ(p["nb_read_frames"], std::to_string(frames));
+    EXPECT_NEAR(std::strtod(p["duration"].c_str(), nullptr), frames / std::stod(fps), 1e-6)
+        << fps << " fps: " << p["duration"];
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // PNG frames and stills
 
@@ -246,6 +265,19 @@ TEST(Render, StillsAtTheGivenTimes) {
   }
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, (std::vector<std::string>{"o/still_0.25.png", "o/still_0.png"}));
+}
+
+TEST(Render, AStillTakesOneTimeSoTheScenePathMayFollow) {
+  // `--still T` is one time per occurrence: a scene path after it is the scene, not a time.
+  const TestDir dir;
+  const RunResult r =
+      run_tumble({"render", "--size", "64x48", "--duration", "0.5", "--no-mp4", "--out", "o",
+                  "--still", "0.25", (source_dir() / "assets/scenes/particle.toml").string()},
+                 dir.path());
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_EQ(names_in(dir / "o"), (std::vector<std::string>{"run.json", "still_0.25.png"}));
+  const std::string scene = read_json(dir / "o/run.json")["scene"]["path"].get<std::string>();
+  EXPECT_NE(scene.find("particle.toml"), std::string::npos) << scene;
 }
 
 TEST(Render, StillAtAFrameTimeIsThatFrame) {
@@ -417,9 +449,13 @@ TEST(Render, FailedRenderKeepsThePreviousGoodClip) {
 
   // Failures of every stage: option checks, the encoder, the EGL device. Into the same folder.
   const std::vector<std::pair<int, std::vector<std::string>>> failures = {
-      {2, {"--still", "99"}},      {2, {"--crf", "60"}},
-      {2, {"--size", "161x121"}},  {2, {"--encoder", "nonexistent"}},
+      {2, {"--still", "99"}},
+      {2, {"--crf", "60"}},
+      {2, {"--size", "161x121"}},
+      {2, {"--encoder", "nonexistent"}},
       {3, {"--egl-device", "99"}},
+      // An H.264 encoder of FFmpeg that this build lacks (VideoToolbox is macOS only): missing.
+      {3, {"--encoder", "h264_videotoolbox"}},
   };
   for (const auto& [code, extra] : failures) {
     SCOPED_TRACE(extra[0] + " " + extra[1]);
@@ -606,14 +642,15 @@ TEST(Render, MsaaOptionChangesThePixels) {
   EXPECT_EQ(j0["gl"]["antialias"], "none") << j0["gl"].dump();
 }
 
-// The same through the scene file (the loader's path), for comparison with the option.
+// The same through the scene file (the loader's path): antialias = "msaa" with msaa 4 or 0 (no
+// samples: none).
 TEST(Render, MsaaInTheSceneChangesThePixels) {
   const TestDir dir;
   const std::string base = read_file(source_dir() / "assets/scenes/default.toml");
   ASSERT_FALSE(base.empty());
   for (const char* msaa : {"4", "0"}) {
     write_scene(dir.path(), std::string("m") + msaa + ".toml",
-                base + "\n[render]\nmsaa = " + msaa + "\n");
+                base + "\n[render]\nantialias = \"msaa\"\nmsaa = " + msaa + "\n");
   }
   for (const char* msaa : {"4", "0"}) {
     const RunResult r =

@@ -113,7 +113,7 @@ TEST(Sweep, ListPrintsTheJobsInGridOrderAndRunsNothing) {
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   // The first key varies slowest.
   EXPECT_EQ(lines(r.out),
-            (std::vector<std::string>{"job,floor.restitution,body.box.angular_velocity",
+            (std::vector<std::string>{"index,floor.restitution,body.box.angular_velocity",
                                       "0,0.2,\"[0.0, 0.0, 1.0]\"", "1,0.2,\"[0.0, 0.0, 4.0]\"",
                                       "2,0.5,\"[0.0, 0.0, 1.0]\"", "3,0.5,\"[0.0, 0.0, 4.0]\"",
                                       "4,0.8,\"[0.0, 0.0, 1.0]\"", "5,0.8,\"[0.0, 0.0, 4.0]\""}));
@@ -321,7 +321,7 @@ TEST(Sweep, CollectNamesMissingJobsAndReportsKeyFigures) {
   ASSERT_EQ(csv.rows.size(), 6u);
   for (std::size_t i = 0; i < 6; ++i) {
     const auto report = read_json(job(dir, static_cast<int>(i)) / "run.json");
-    EXPECT_EQ(csv.rows[i][csv.column("job")], std::to_string(i));
+    EXPECT_EQ(csv.rows[i][csv.column("index")], std::to_string(i));
     EXPECT_EQ(csv.rows[i][csv.column("status")], "finished");
     EXPECT_EQ(std::stod(csv.rows[i][csv.column("energy_start_J")]),
               report["physics"]["energy_start_J"].get<double>());

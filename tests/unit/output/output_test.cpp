@@ -7,9 +7,11 @@
 
 #include "../test_dir.hpp"
 #include "tumble/atomic_file.hpp"
+#include "tumble/csv_field.hpp"
 #include "tumble/error.hpp"
 #include "tumble/sha256.hpp"
 #include "tumble/trajectory_writer.hpp"
+#include "tumble/world.hpp"
 
 namespace tumble {
 namespace {
@@ -41,7 +43,8 @@ TEST(Sha256, MatchesFipsVectors) {
 }
 
 // Files are digested in 64 KiB chunks: the NIST million-'a' vector spans 16 chunks, the last one
-// partial, so this checks that chunks are streamed into one digest (exact: digests are equal or not).
+// partial, so this checks that chunks are streamed into one digest (exact: digests are equal or
+// not).
 TEST(Sha256, StreamsAFileInChunksToTheNistDigest) {
   const fs::path dir = fresh_dir("sha_stream");
   {
@@ -52,7 +55,8 @@ TEST(Sha256, StreamsAFileInChunksToTheNistDigest) {
             "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
   EXPECT_EQ(sha256_file_hex(dir / "empty"),
             "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
-  // A size that ends exactly on a chunk boundary, with every byte value: same as the one-shot digest.
+  // A size that ends exactly on a chunk boundary, with every byte value: same as the one-shot
+  // digest.
   std::string bytes(3 * 65536, '\0');
   for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 131 % 256);
   std::ofstream(dir / "boundary", std::ios::binary) << bytes;
@@ -112,6 +116,32 @@ TEST(FormatDouble, ReadsBackBitExact) {
     EXPECT_EQ(std::memcmp(&x, &back, sizeof x), 0) << s;
   }
   EXPECT_EQ(format_double(0.5), "0.5");
+}
+
+TEST(CsvField, QuotesOnlyWhatMustBe) {
+  EXPECT_EQ(csv_field("box"), "box");
+  EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
+  EXPECT_EQ(csv_field("say \"hi\""), R"("say ""hi""")");
+  EXPECT_EQ(csv_field("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(csv_field(""), "");
+}
+
+TEST(TrajectoryWriter, ABodyNameWithACommaKeepsTheColumns) {
+  // Scene names are free text: one with a comma, a quote and a line break is one quoted field,
+  // so every row still has the header's 16 columns.
+  WorldDef def;
+  BodyDef b;
+  b.name = "a,\"b\"\nc";
+  b.particle = true;
+  b.mass_kg = 1.0;
+  def.bodies.push_back(b);
+  const World w(def);
+  const fs::path dir = fresh_dir("trajectory_quoting");
+  TrajectoryWriter csv(dir / "trajectory.csv");
+  csv.write(0.0, w);
+  csv.commit();
+  const std::string text = slurp(dir / "trajectory.csv");
+  EXPECT_NE(text.find("\n0,\"a,\"\"b\"\"\nc\",0,"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -500,13 +500,13 @@ TEST(SceneLoader, RecordsWhichCameraKeysTheSceneStates) {
   EXPECT_FALSE(none.camera.target_given);
   EXPECT_FALSE(none.camera.ortho_height_given);
   EXPECT_FALSE(none.camera.framed);
-  const Scene some = parse_scene(
-      with_box("[camera]\ntarget = [0, 1, 0]\northo_height = 3\n"), "test.toml");
+  const Scene some =
+      parse_scene(with_box("[camera]\ntarget = [0, 1, 0]\northo_height = 3\n"), "test.toml");
   EXPECT_FALSE(some.camera.position_given);
   EXPECT_TRUE(some.camera.target_given);
   EXPECT_TRUE(some.camera.ortho_height_given);
-  const Scene all = parse_scene(
-      with_box("[camera]\nposition = [1, 2, 3]\ntarget = [0, 1, 0]\n"), "test.toml");
+  const Scene all =
+      parse_scene(with_box("[camera]\nposition = [1, 2, 3]\ntarget = [0, 1, 0]\n"), "test.toml");
   EXPECT_TRUE(all.camera.position_given);
   EXPECT_TRUE(all.camera.target_given);
 }
@@ -775,9 +775,15 @@ TEST(SceneLoader, AntialiasDefaultsToFxaa) {
   EXPECT_EQ(parse_render("").render.antialias, Antialias::Fxaa);
 }
 
-TEST(SceneLoader, MsaaAloneAsksForMultisampling) {
-  EXPECT_EQ(parse_render("[render]\nmsaa = 4\n").render.antialias, Antialias::Msaa);
-  EXPECT_EQ(parse_render("[render]\nmsaa = 0\n").render.antialias, Antialias::None);
+TEST(SceneLoader, MsaaIsTheSampleCountOfAntialiasMsaaOnly) {
+  // SPEC: antialias defaults to "fxaa"; msaa is the number of samples when antialias = "msaa".
+  const Scene alone = parse_render("[render]\nmsaa = 2\n");
+  EXPECT_EQ(alone.render.antialias, Antialias::Fxaa);
+  EXPECT_EQ(alone.render.msaa, 2);
+  EXPECT_EQ(parse_render("[render]\nmsaa = 0\n").render.antialias, Antialias::Fxaa);
+  const Scene both = parse_render("[render]\nantialias = \"msaa\"\nmsaa = 2\n");
+  EXPECT_EQ(both.render.antialias, Antialias::Msaa);
+  EXPECT_EQ(both.render.msaa, 2);
   EXPECT_EQ(parse_render("[render]\nantialias = \"none\"\nmsaa = 4\n").render.antialias,
             Antialias::None);
 }

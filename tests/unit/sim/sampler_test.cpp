@@ -50,6 +50,13 @@ TEST(Sampler, StepBoundaryTimesAreRecognised) {
   EXPECT_EQ(Sampler::steps_before(0.0005, 0.001), 0);
   EXPECT_EQ(Sampler::steps_before(1.0 / 60.0, 0.001), 16);
   EXPECT_EQ(sample_count(4.0, 60.0), 241);
+  // k / rate < duration for every k kept, then the end: 1.005 s at 60 Hz is k = 0 … 60 and
+  // 1.005 (62 samples; rounding 60.3 would drop t = 1), 1.05 s at 7 Hz is k = 0 … 7 and 1.05.
+  EXPECT_EQ(sample_count(1.005, 60.0), 62);
+  EXPECT_EQ(sample_count(1.05, 7.0), 9);
+  EXPECT_EQ(sample_count(1.01, 60.0), 62);
+  EXPECT_EQ(sample_count(1.0, 7.0), 8);
+  EXPECT_EQ(sample_count(0.1, 30.0), 4);  // 3 / 30 is 0.1 exactly in binary: not before the end
   EXPECT_EQ(step_count_for(4.0, 0.001), 4000);
   EXPECT_EQ(step_count_for(1.0, 1.0 / 30.0), 30);
 }

@@ -137,7 +137,7 @@ seed = 1
   for (std::size_t i = 0; i < 6; ++i)
     EXPECT_EQ(make_job(plan, i).parameters[0].value, i < 3 ? "0.2" : "0.8") << i;
   const std::string csv = job_list_csv(plan, {make_job(plan, 0)});
-  EXPECT_TRUE(csv.starts_with("job,floor.restitution,body.box.orientation.degrees\n0,0.2,")) << csv;
+  EXPECT_TRUE(csv.starts_with("index,floor.restitution,body.box.orientation.degrees\n0,0.2,")) << csv;
 }
 
 TEST(SweepPlan, JobFolderNames) {
