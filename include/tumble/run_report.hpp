@@ -41,6 +41,7 @@ struct RunReport {
   const Scene* scene = nullptr;
   long steps = 0;
   long samples = 0;  ///< trajectory samples or frames
+  std::optional<long> frames;  ///< render: the clip's frame count N = round(duration · fps)
   /// render: clip frames not drawn again because nothing in them moved (the previous image).
   std::optional<long> frames_reused;
   double sample_rate_hz = 0.0;

@@ -90,7 +90,8 @@ int run_render(const RenderOptions& o, RenderSession* session) {
   const auto start = Clock::now();
   Scene scene = load_scene(o.common);
   if (o.msaa) {
-    // As in a scene file: asking for samples asks for multisampling (0 or 1: none).
+    // On the command line, asking for samples asks for multisampling (0 or 1: none), unless
+    // --antialias (below) says otherwise; in a scene file msaa is only the sample count.
     if (*o.msaa < 0 || *o.msaa > 16) bad("--msaa must be in [0, 16]");
     scene.render.msaa = *o.msaa;
     scene.render.antialias = *o.msaa > 1 ? Antialias::Msaa : Antialias::None;
@@ -196,6 +197,7 @@ int run_render(const RenderOptions& o, RenderSession* session) {
   report.scene = &scene;
   report.steps = step_count_for(duration, def.dt_s);  // the last may be taken part-way
   report.samples = clip_frames;
+  report.frames = clip_frames;
   report.sample_rate_hz = fps;
   report.gl_vendor = gl.info().gl_vendor;
   report.gl_renderer =

@@ -85,6 +85,7 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
                  {"samples", r.samples},
                  {"sample_rate_hz", r.sample_rate_hz},
                  {"every_step", r.every_step}};
+  if (r.frames) j["counts"]["frames"] = *r.frames;
   if (r.frames_reused) j["counts"]["frames_reused"] = *r.frames_reused;
   if (r.world && r.world->def().integrator == Integrator::Adaptive) {
     const StepStats& st = r.world->step_stats();

@@ -131,6 +131,7 @@ TEST(Render, DefaultSceneWritesAPlayableMp4) {
   EXPECT_EQ(j["settings"]["render"]["fps"], 60);
   EXPECT_EQ(j["settings"]["simulation"]["duration_s"], 0.5);
   EXPECT_EQ(j["counts"]["samples"], 30);
+  EXPECT_EQ(j["counts"]["frames"], 30);  // SPEC: run.json has the frame count
   EXPECT_EQ(j["counts"]["steps"], 500);
   EXPECT_EQ(j["counts"]["sample_rate_hz"], 60.0);
   ASSERT_TRUE(j["gl"].is_object()) << j.dump(2);
