@@ -25,6 +25,14 @@
 namespace tumble::cli {
 namespace {
 
+// The worse of two job exit codes: a failure (3, the environment, over 2, bad input) over a run
+// that completed but was flagged (4, its outputs written) over success, so that a shard exiting
+// 4 means every job's outputs exist.
+int worse(int a, int b) {
+  auto rank = [](int code) { return code == 0 ? 0 : code == 4 ? 1 : code == 2 ? 2 : 3; };
+  return rank(b) > rank(a) ? b : a;
+}
+
 namespace fs = std::filesystem;
 using sweep::Job;
 using sweep::JobRecord;
@@ -205,7 +213,7 @@ int run_sweep(const SweepOptions& o) {
     if (before.complete) {
       // Finished for this very scene and version: its outputs would come out the same.
       ++skipped;
-      if (before.state == JobState::Failed) worst = std::max(worst, before.exit_code);
+      if (before.state == JobState::Failed) worst = worse(worst, before.exit_code);
       continue;
     }
     const auto job_start = std::chrono::steady_clock::now();
@@ -234,7 +242,7 @@ int run_sweep(const SweepOptions& o) {
     ++ran;
     if (code != 0) {
       ++failed;
-      worst = std::max(worst, code);
+      worst = worse(worst, code);
       sweep::write_error_file(dir, code, message);
       std::fprintf(stderr, "tumble: error: job %zu failed (exit %d): %s\n", job.index, code,
                    message.c_str());

@@ -279,6 +279,28 @@ args = ["--no-mp4", "--still", "0.4", "--size", "64x48"]
 "simulation.duration" = [0.5, 0.3, 0.5]
 )";
 
+TEST(Sweep, AFailedJobIsWorseThanAFlaggedOne) {
+  // --strict, euler at dt = 0.02 s with a fast spin: job 0 completes flagged (exit 4, outputs
+  // written); job 1 asks for a still beyond its shorter run (exit 2, nothing written). The
+  // shard exits 2: exit 4 would say every job's outputs exist.
+  const TestDir dir;
+  write_plan(dir, R"(scene = "drop.toml"
+args = ["--strict", "--integrator", "euler", "--dt", "0.02", "--no-mp4", "--still", "0.4",
+        "--size", "64x48"]
+[grid]
+"simulation.duration" = [0.5, 0.3]
+"body.box.angular_velocity" = [[0.0, 20.0, 0.0]]
+)");
+  const RunResult r = sweep({"plan.toml", "--quiet"}, dir.path());
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_TRUE(read_file(job(dir, 0) / "error.txt").starts_with("exit 4\n"));
+  EXPECT_TRUE(fs::exists(job(dir, 0) / "run.json"));
+  EXPECT_TRUE(read_file(job(dir, 1) / "error.txt").starts_with("exit 2\n"));
+  EXPECT_FALSE(fs::exists(job(dir, 1) / "run.json"));
+  // Rerun: job 0 counts as done (skipped, still flagged), job 1 fails again; still 2.
+  EXPECT_EQ(sweep({"plan.toml", "--quiet"}, dir.path()).exit_code, 2);
+}
+
 TEST(Sweep, AFailedJobLeavesErrorTxtAndTheShardGoesOn) {
   const TestDir dir;
   write_plan(dir, kFailingPlan);
