@@ -218,6 +218,23 @@ TEST(RendererReuse, AnotherSceneInTheSameFormatDrawsWhatANewRendererDraws) {
   EXPECT_FALSE(after.pixels == before.pixels);
 }
 
+TEST(RendererReuse, TheFirstPictureOfTheNextSceneIsDrawnInFull) {
+  // Same camera, same body pose, another sky and floor: only the body's rectangle would be
+  // redrawn if the last scene's picture were built on. It must not be.
+  EglContext gl;
+  const Scene first = small_scene();
+  Scene second = small_scene();
+  second.render.background = Color{0x30, 0x30, 0x40};
+  Renderer reused(first);
+  reused.draw(World(make_world_def(first)));
+  ASSERT_TRUE(reused.reuse_for(second));
+  reused.draw(World(make_world_def(second)));
+  EXPECT_EQ(reused.redrawn_share(), 1.0);
+  Renderer fresh(second);
+  fresh.draw(World(make_world_def(second)));
+  EXPECT_TRUE(reused.read_image().pixels == fresh.read_image().pixels);
+}
+
 TEST(RendererReuse, AnotherFormatIsRefused) {
   EglContext gl;
   const Scene first = small_scene();
