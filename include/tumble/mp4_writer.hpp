@@ -51,6 +51,10 @@ class Mp4Writer {
 
   /// H.264 encoders this FFmpeg build offers (names), whether or not hardware for them exists.
   static std::vector<std::string> available_h264_encoders();
+  /// Of those, the ones that open here (each is opened once at a small size and closed), and the
+  /// one "auto" would use: what `tumble info` reports as usable.
+  static std::vector<std::string> usable_h264_encoders();
+  static std::string auto_h264_encoder();
 
  private:
   struct Impl;

@@ -20,6 +20,11 @@ int run_info() {
   std::printf("H.264 encoders in FFmpeg:");
   for (const auto& e : Mp4Writer::available_h264_encoders()) std::printf(" %s", e.c_str());
   std::printf("\n");
+  // Compiled in is not usable: a hardware encoder needs its device and driver too.
+  std::printf("H.264 encoders usable here:");
+  for (const auto& e : Mp4Writer::usable_h264_encoders()) std::printf(" %s", e.c_str());
+  const std::string chosen = Mp4Writer::auto_h264_encoder();
+  std::printf("\nencoder auto: %s\n", chosen.empty() ? "(none opens)" : chosen.c_str());
   const EglContext gl;  // throws Environment (exit 3) with every attempt listed
   const GlInfo& i = gl.info();
   std::printf("EGL platform: %s\nEGL vendor: %s\nEGL version: %s\n", i.platform.c_str(),

@@ -241,4 +241,41 @@ std::vector<std::string> Mp4Writer::available_h264_encoders() {
   return h264_encoder_names();
 }
 
+namespace {
+
+// A small picture every encoder takes (hardware ones have minimum sizes around 64-256 px).
+Mp4Settings probe_settings(const std::string& encoder) {
+  Mp4Settings s;
+  s.width = 320;
+  s.height = 240;
+  s.fps = 30;
+  s.encoder = encoder;
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> Mp4Writer::usable_h264_encoders() {
+  silence_ffmpeg_log();
+  std::vector<std::string> usable;
+  for (const std::string& name : h264_encoder_names()) {
+    try {
+      open_h264_encoder(probe_settings(name), true);
+      usable.push_back(name);
+    } catch (const Error&) {
+      // compiled in, but no device, driver or library for it here
+    }
+  }
+  return usable;
+}
+
+std::string Mp4Writer::auto_h264_encoder() {
+  silence_ffmpeg_log();
+  try {
+    return open_h264_encoder(probe_settings("auto"), true).context->codec->name;
+  } catch (const Error&) {
+    return "";
+  }
+}
+
 }  // namespace tumble

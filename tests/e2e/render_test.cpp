@@ -152,6 +152,10 @@ TEST(Render, DefaultSceneWritesAPlayableMp4) {
   ASSERT_TRUE(j["encoder"].is_string()) << j.dump(2);
   const std::string encoder = j["encoder"].get<std::string>();
   EXPECT_NE(info.out.find(encoder), std::string::npos) << encoder << " is not listed by info";
+  // info says which encoder auto uses here, and that one is usable.
+  EXPECT_EQ(info_lines(info.out)["encoder auto"], encoder) << info.out;
+  EXPECT_NE(info_lines(info.out)["H.264 encoders usable here"].find(encoder), std::string::npos)
+      << info.out;
   if (info_renderer.find("llvmpipe") != std::string::npos) {
     EXPECT_NE(renderer.find("llvmpipe"), std::string::npos) << renderer;
     EXPECT_EQ(encoder, "libx264");
