@@ -258,6 +258,17 @@ struct Renderer::Impl {
       return {whole()};
     std::vector<Rect> rects = drawn->rects;
     rects.insert(rects.end(), now.begin(), now.end());
+    const auto bounding_box = [](const std::vector<Rect>& all) {
+      Rect box = all.front();
+      for (const Rect& r : all)
+        box = Rect(std::min(box[0], r[0]), std::min(box[1], r[1]), std::max(box[2], r[2]),
+                   std::max(box[3], r[3]));
+      return std::vector<Rect>{box};
+    };
+    // Many bodies: one box around them all (a pass per rectangle draws every body, and merging
+    // many rectangles pairwise would cost more than it saves).
+    constexpr std::size_t kMaxPasses = 8, kMaxMerged = 64;
+    if (rects.size() > kMaxMerged) return bounding_box(rects);
     // Overlapping (or touching) rectangles become their bounding box, until none overlap.
     for (bool merged = true; merged;) {
       merged = false;
@@ -271,16 +282,7 @@ struct Renderer::Impl {
           merged = true;
         }
     }
-    // Many bodies: one box around them all (a pass per rectangle draws every body).
-    constexpr std::size_t kMaxPasses = 8;
-    if (rects.size() > kMaxPasses) {
-      Rect box = rects.front();
-      for (const Rect& r : rects)
-        box = Rect(std::min(box[0], r[0]), std::min(box[1], r[1]), std::max(box[2], r[2]),
-                   std::max(box[3], r[3]));
-      rects = {box};
-    }
-    return rects;
+    return rects.size() > kMaxPasses ? bounding_box(rects) : rects;
   }
 
   // Draws a picture. When the camera and the floor are where they were for the last picture,

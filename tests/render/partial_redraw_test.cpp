@@ -149,6 +149,14 @@ TEST(PartialRedraw, ManyBodiesAndAFollowingCamera) {
             ", 0.5]\nvelocity = [0.0, 2.0, 0.0]\nangular_velocity = [1.0, 2.0, 3.0]\n";
   const Scene crowd = parse_scene(moving_scene(many), "<test>");
   expect_same_frames(draw_frames(crowd, false, 10), draw_frames(crowd, true, 10));
+  // More rectangles than are merged pairwise (two per body and picture): their bounding box.
+  std::string swarm;
+  for (int i = 0; i < 40; ++i)
+    swarm += "[[body]]\nshape = \"particle\"\nmass = 0.1\nposition = [" +
+             std::to_string(-4.0 + 0.2 * i) + ", " + std::to_string(0.5 + 0.3 * (i % 7)) +
+             ", 0.0]\nvelocity = [0.0, 3.0, 0.0]\n";
+  const Scene crowded = parse_scene(moving_scene(swarm), "<test>");
+  expect_same_frames(draw_frames(crowded, false, 6), draw_frames(crowded, true, 6));
 
   Scene followed = parse_scene(moving_scene(), "<test>");
   followed.camera.follow = "thrown";
