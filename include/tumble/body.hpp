@@ -4,6 +4,8 @@
 /// Y = (x, q or R, P, L). Velocities are derived: v = P/m, I⁻¹ = R I_body⁻¹ Rᵀ, ω = I⁻¹ L.
 /// A particle carries (x, P) only: its orientation and angular momentum are never integrated.
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,10 +24,30 @@ struct BodyState {
   Vec3 L = Vec3::Zero();  ///< angular momentum about the centre of mass, world, kg·m²/s
 };
 
+/// The shape a body collides with. A box and a mesh are both convex polyhedra (a mesh as its
+/// convex hull); a sphere has a radius and full rotation; a particle is a point.
+enum class ShapeKind { Particle, Sphere, Box, Hull };
+
+/// A face of a convex polyhedron in the body frame: its outward unit normal and its corners
+/// (indices into the body's vertices), counter-clockwise seen from outside.
+struct HullFace {
+  Vec3 normal = Vec3::UnitY();
+  std::vector<int> vertices;
+};
+
 /// What the simulation needs to know of a body: plain data, built by the scene layer.
 struct BodyDef {
   std::string name;
   bool particle = false;
+  ShapeKind shape = ShapeKind::Box;  ///< kept consistent with `particle` by the builder
+  double radius_m = 0.0;             ///< sphere only
+  /// Faces of a box or hull (body frame, over `vertices`); empty for spheres and particles.
+  std::vector<HullFace> faces;
+  /// Does not move: infinite mass, never integrated, never meets the floor or another fixed
+  /// body (ramps, tables, walls, pegs).
+  bool fixed = false;
+  /// Coulomb mu of the body (SPEC per-body `friction`); none: the floor's (0 without a floor).
+  std::optional<double> friction;
   double mass_kg = 1.0;
   Vec3 inertia_body = Vec3::Ones();  ///< principal moments, kg·m² (unused for a particle)
   std::vector<Vec3> vertices;        ///< contact points in the body frame (box: its 8 corners)
@@ -52,6 +74,15 @@ bool same_pose(const BodyState& a, const BodyState& b);
 Vec3 box_inertia(double mass_kg, const Vec3& size);
 /// The 8 corners of a box of full edge lengths `size`, centred on the origin.
 std::vector<Vec3> box_corners(const Vec3& size);
+/// The 6 faces of the box whose corners box_corners gives (corner i has bit 0 = +x, 1 = +y,
+/// 2 = +z), counter-clockwise from outside.
+std::vector<HullFace> box_faces();
+/// Principal moments of a solid sphere: 2/5 m r² about every axis.
+Vec3 sphere_inertia(double mass_kg, double radius_m);
+/// The faces of a convex polyhedron from its outward-wound triangles: coplanar neighbours
+/// (normals within 1e-9) merged into one polygon, corners counter-clockwise from outside.
+std::vector<HullFace> faces_from_triangles(const std::vector<Vec3>& vertices,
+                                           const std::vector<std::array<int, 3>>& triangles);
 
 class RigidBody {
  public:
@@ -59,12 +90,27 @@ class RigidBody {
 
   const std::string& name() const { return name_; }
   bool is_particle() const { return particle_; }
+  ShapeKind shape() const { return shape_; }
+  bool is_sphere() const { return shape_ == ShapeKind::Sphere; }
+  bool is_fixed() const { return fixed_; }
+  double radius() const { return radius_; }
+  const std::vector<HullFace>& faces() const { return faces_; }
+  /// The distinct directions of the polyhedron's edges (body frame, unit): the edge axes of the
+  /// separating-axis test. Empty for spheres and particles.
+  const std::vector<Vec3>& edge_directions() const { return edge_directions_; }
+  /// Distance from the centre of mass to the farthest point of the shape.
+  double bounding_radius() const { return bounding_radius_; }
   double mass() const { return mass_; }
   double inverse_mass() const { return inverse_mass_; }
   const Vec3& inertia_body() const { return inertia_body_; }
   const Vec3& inverse_inertia_body() const { return inverse_inertia_body_; }
   const std::vector<Vec3>& vertices() const { return vertices_; }
   double restitution() const { return restitution_; }
+  /// Contact vertex i relative to the centre of mass in world axes, for orientation R: R v_i,
+  /// or for a sphere (one vertex) the point of it lowest along y, (0, -r, 0) whatever R.
+  Vec3 vertex_offset(const Mat3& R, int i) const {
+    return shape_ == ShapeKind::Sphere ? Vec3(0.0, -radius_, 0.0) : Vec3(R * vertices_[i]);
+  }
 
   BodyState state;
   /// True once the body rests in static equilibrium on the floor (see World): its exact motion
@@ -89,6 +135,12 @@ class RigidBody {
  private:
   std::string name_;
   bool particle_;
+  ShapeKind shape_;
+  bool fixed_;
+  double radius_;
+  std::vector<HullFace> faces_;
+  std::vector<Vec3> edge_directions_;
+  double bounding_radius_;
   double mass_, inverse_mass_;
   Vec3 inertia_body_, inverse_inertia_body_;
   std::vector<Vec3> vertices_;

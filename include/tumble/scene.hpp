@@ -18,7 +18,7 @@
 
 namespace tumble {
 
-enum class Shape { Box, Particle, Mesh };
+enum class Shape { Box, Particle, Mesh, Sphere };
 /// Names of MeshRepair values in enum order, as a scene writes them.
 inline constexpr std::array<std::string_view, 3> kMeshRepairNames = {"none", "orient", "hull"};
 std::string_view to_string(Shape shape);
@@ -39,6 +39,8 @@ struct SimulationSettings {
   Vec3 gravity{0.0, -9.81, 0.0};
   double linear_drag = 0.0;   ///< N·s/m; 0 = not modelled
   double angular_drag = 0.0;  ///< N·m·s; 0 = not modelled
+  /// `collisions = "all"`: bodies meet each other as well as the floor; "floor": only the floor.
+  bool collisions = true;
 };
 
 /// The plane y = height. Present only when the scene has a [floor] table.
@@ -95,7 +97,8 @@ struct LightSettings {
 struct BodySpec {
   std::string name;
   Shape shape = Shape::Box;
-  Vec3 size{1.0, 1.0, 1.0};   ///< box: full edge lengths; particle: drawn size only
+  Vec3 size{1.0, 1.0, 1.0};   ///< box: full edge lengths; particle: drawn size; sphere: 2r
+  double radius_m = 0.0;      ///< sphere only
   std::string mesh;           ///< shape = mesh: path as resolved against the scene's folder
   SourceLocation mesh_where;  ///< where the scene names the mesh
   Vec3 scale = Vec3::Ones();  ///< mesh: file units -> metres, per axis
@@ -107,8 +110,18 @@ struct BodySpec {
   Vec3 velocity = Vec3::Zero();          ///< m/s
   Vec3 angular_velocity = Vec3::Zero();  ///< rad/s, world frame
   std::optional<double> restitution;     ///< overrides the floor's
+  std::optional<double> friction;        ///< Coulomb mu; default: the floor's (0 without one)
+  bool fixed = false;                    ///< does not move (ramps, tables, walls, pegs)
   Color color;
   SourceLocation where;  ///< the [[body]] header, for errors found after parsing
+};
+
+/// `[[pair]]`: what two named bodies (or a body and "floor") do when they meet.
+struct PairSpec {
+  int a = -1, b = -1;  ///< body indices, a < b; -1 = the floor
+  std::optional<double> restitution, friction;
+  bool collide = true;
+  SourceLocation where;
 };
 
 struct Scene {
@@ -121,6 +134,7 @@ struct Scene {
   CameraSettings camera;
   LightSettings light;
   std::vector<BodySpec> bodies;
+  std::vector<PairSpec> pairs;  ///< sorted by (a, b)
 };
 
 /// Command-line values for the run's length and step: they replace the file's before the

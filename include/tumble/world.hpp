@@ -1,7 +1,12 @@
 #pragma once
 /// The World owns the bodies and the force and contact models the scene asks for, and advances
-/// them in fixed steps dt from t = 0. Bodies do not collide with each other; each meets only the
-/// floor, so a step advances every body independently, in scene order (deterministic).
+/// them in fixed steps dt from t = 0. Each step groups the moving bodies into islands: those
+/// that touch, or whose swept bounds overlap during the step (with the fixed bodies and the
+/// floor they may meet). Islands are stepped one after another in a fixed order; a body alone
+/// with at most the floor is stepped exactly as a single body always was (below), so a scene
+/// of far-apart bodies costs what it did before bodies met each other. Islands of several
+/// bodies (island_step.cpp) locate their impacts in time the same way and resolve them over
+/// all the bodies they join.
 ///
 /// Floor contact (only with a floor): a contact vertex crossing the plane inside a step is an
 /// impact; its time is located to within kToiGap of the plane, impulses are applied at every
@@ -30,6 +35,17 @@ struct FloorDef {
   double friction = 0.0;  ///< Coulomb mu; 0 = frictionless
 };
 
+/// The floor, where a body index names a side of a pair.
+inline constexpr int kFloorBody = -1;
+
+/// What two bodies (or a body and the floor) do when they meet, where a scene says so.
+struct PairDef {
+  int a = kFloorBody, b = kFloorBody;  ///< body indices, a < b (kFloorBody first)
+  std::optional<double> restitution;   ///< default: the larger of the two bodies'
+  std::optional<double> friction;      ///< default: sqrt(mu_a mu_b)
+  bool collide = true;
+};
+
 struct WorldDef {
   double dt_s = 0.001;
   Integrator integrator = Integrator::Rk4;
@@ -41,6 +57,11 @@ struct WorldDef {
   double angular_drag = 0.0;  ///< N·m·s, 0 = none
   std::optional<FloorDef> floor;
   std::vector<BodyDef> bodies;
+  /// Bodies meet each other (SPEC `collisions = "all"`); false: each meets only the floor.
+  bool collisions = true;
+  /// Sorted by (a, b). Against the floor a body's BodyDef restitution and friction already
+  /// include its floor pair.
+  std::vector<PairDef> pairs;
   /// Tests and benchmarks: solve every resting contact with the general LCP, the reference the
   /// resting-face fast path is checked against.
   bool general_contact_only = false;
@@ -96,6 +117,15 @@ struct ImpactEvent {
   double t_s = 0.0;
   int body = 0;
   double approach_speed_mps = 0.0;
+  int other = kFloorBody;  ///< what it hit: another body's index, or the floor
+};
+
+/// What one pair (two bodies, or a body and the floor) did over the run: the pairs that touched.
+struct PairContactStats {
+  int a = kFloorBody, b = 0;  ///< a < b; kFloorBody for the floor
+  long impacts = 0;
+  double first_impact_t_s = -1.0;  ///< -1 while none
+  double deepest_penetration_m = 0.0;
 };
 
 /// What contact did over the run, for run.json and tests.
@@ -106,6 +136,8 @@ struct ContactStats {
   /// Every impact in time order (the first kMaxRecordedImpacts of them).
   std::vector<ImpactEvent> events;
   static constexpr std::size_t kMaxRecordedImpacts = 100000;
+  /// Every pair that touched, in (a, b) order.
+  std::vector<PairContactStats> pairs;
 };
 
 /// What the adaptive integrator did (zero for the fixed-step ones): the substeps of the states
@@ -117,7 +149,18 @@ struct StepStats {
   double largest_step_s = 0.0;
 };
 
+/// Two bodies that overlap at the start by more than their touch tolerance.
+struct StartOverlap {
+  int a = 0, b = 0;      ///< body indices, a < b
+  double depth_m = 0.0;  ///< how deep, m (> 0)
+};
+/// Every pair of bodies of `def` that can meet and overlaps at t = 0 beyond the touch tolerance
+/// of the finer of the two (fixed bodies may overlap each other: they never meet).
+std::vector<StartOverlap> overlaps_at_start(const WorldDef& def);
+
 class World;
+struct Island;
+struct IslandContact;
 /// True when every body of `a` and `b` (worlds of one WorldDef) is in the same pose (same_pose):
 /// a picture of one is the picture of the other.
 bool same_poses(const World& a, const World& b);
@@ -149,7 +192,16 @@ class World {
   double total_energy() const;
 
  private:
+  // One step (or part of one) of every body: islands found, then stepped in order.
+  void advance_all(double h);
   void advance_body(std::size_t body, double h);
+  void advance_island(const Island& island, double h);
+  std::vector<Island> find_islands(double h);
+  // The pair statistics entry of (a, b), created when first touched.
+  PairContactStats& pair_stats(int a, int b);
+  // Restitution and friction of bodies a and b (a may be kFloorBody).
+  std::pair<double, double> pair_material(int a, int b) const;
+  bool pair_collides(int a, int b) const;
   std::string smaller_step_fix() const;
   // The body's integrator settings, with its controller state (adaptive).
   Stepping stepping(std::size_t body) const;
@@ -172,6 +224,11 @@ class World {
   std::vector<BodyState> flight_start_state_;  // the last contact step's end, until evaluated
   std::vector<char> flight_start_known_;       // flight_start_energy_ is that state's energy
   std::vector<int> crossing_;                  // scratch: vertices found below the floor
+  bool meets_bodies_ = false;  // some pair of bodies can touch: islands are looked for
+  std::vector<double> own_restitution_;  // each body's own (for pairs of bodies)
+  std::vector<double> own_friction_;     // each body's own, else the floor's, else 0
+  std::vector<double> floor_friction_;   // against the floor: its [[pair]], else own_friction_
+  std::vector<char> sliding_toward_rest_;  // scratch of island steps
   long steps_ = 0;
   double time_ = 0.0;
   long evaluations_ = 0;

@@ -84,7 +84,8 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
                  {"derivative_evaluations", r.world ? r.world->derivative_evaluations() : 0},
                  {"samples", r.samples},
                  {"sample_rate_hz", r.sample_rate_hz},
-                 {"every_step", r.every_step}};
+                 {"every_step", r.every_step},
+                 {"impacts", r.contact.impacts}};
   if (r.frames) j["counts"]["frames"] = *r.frames;
   if (r.frames_reused) j["counts"]["frames_reused"] = *r.frames_reused;
   if (r.world && r.world->def().integrator == Integrator::Adaptive) {
@@ -119,6 +120,20 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
                   {"max_contact_energy_gain_J", r.contact.max_energy_gain_J},
                   {"contacts", r.contact.impacts},
                   {"deepest_penetration_m", r.contact.deepest_penetration_m}};
+  // Every pair that touched, "floor" as a name.
+  ordered_json pairs = ordered_json::array();
+  if (r.world)
+    for (const PairContactStats& p : r.contact.pairs) {
+      auto name = [&](int body) {
+        return body == kFloorBody ? std::string("floor") : r.world->bodies()[body].name();
+      };
+      pairs.push_back({{"bodies", ordered_json::array({name(p.a), name(p.b)})},
+                       {"impacts", p.impacts},
+                       {"first_impact_t_s", p.impacts > 0 ? ordered_json(p.first_impact_t_s)
+                                                           : ordered_json()},
+                       {"deepest_penetration_m", p.deepest_penetration_m}});
+    }
+  j["physics"]["contact_pairs"] = pairs;
   ordered_json diagnostics = ordered_json::array();
   if (r.world)
     for (const Diagnostic& d : r.world->diagnostics().list())
@@ -139,7 +154,10 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
     for (std::size_t i = 0; i < r.world->bodies().size(); ++i) {
       const RigidBody& b = r.world->bodies()[i];
       const MeshBody* model = r.models ? r.models->model(i) : nullptr;
-      const std::string shape = model ? "mesh" : b.is_particle() ? "particle" : "box";
+      const std::string shape = model           ? "mesh"
+                                : b.is_particle() ? "particle"
+                                : b.is_sphere()   ? "sphere"
+                                                  : "box";
       ordered_json body = {{"name", b.name()},
                            {"shape", shape},
                            {"mass_kg", b.mass()},

@@ -58,7 +58,7 @@ void body_points(const Scene& scene, const World& world, std::vector<Vec3>& poin
   const std::vector<RigidBody>& bodies = world.bodies();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const RigidBody& b = bodies[i];
-    if (b.is_particle()) {
+    if (b.is_particle() || b.is_sphere()) {
       // Drawn as a sphere of diameter `size` (per axis): the corners of its bounding box.
       const Vec3 half = 0.5 * scene.bodies[i].size;
       for (int k = 0; k < 8; ++k)

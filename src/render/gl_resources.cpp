@@ -130,6 +130,38 @@ Mesh make_sphere(int rings, int segments) {
   return upload(v, idx);
 }
 
+Mesh make_marked_sphere(int rings, int segments) {
+  // Rings and segments multiples of 2 and 4 put triangle edges on the three coordinate planes,
+  // so every triangle lies in one octant; its centre's octant decides its colour.
+  std::vector<float> v;
+  std::vector<unsigned> marked, plain;
+  auto point = [&](int r, int s) {
+    const double theta = kPi * r / rings, phi = 2.0 * kPi * s / segments;
+    return Vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+  };
+  for (int r = 0; r <= rings; ++r)
+    for (int s = 0; s <= segments; ++s) {
+      const Vec3 n = point(r, s);
+      for (double x : {0.5 * n.x(), 0.5 * n.y(), 0.5 * n.z(), n.x(), n.y(), n.z()})
+        v.push_back(float(x));
+    }
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const unsigned a = unsigned(r * (segments + 1) + s), b = a + unsigned(segments + 1);
+      // The cell's centre direction (not a vertex: off every coordinate plane).
+      const double theta = kPi * (r + 0.5) / rings, phi = 2.0 * kPi * (s + 0.5) / segments;
+      const Vec3 m(std::sin(theta) * std::cos(phi), std::cos(theta),
+                   std::sin(theta) * std::sin(phi));
+      auto& to = m.x() * m.y() * m.z() > 0.0 ? marked : plain;
+      to.insert(to.end(), {a, a + 1, b, b, a + 1, b + 1});
+    }
+  const GLsizei count = static_cast<GLsizei>(marked.size());
+  marked.insert(marked.end(), plain.begin(), plain.end());
+  Mesh mesh = upload(v, marked);
+  mesh.marked = count;
+  return mesh;
+}
+
 Mesh make_model(const TriangleMesh& mesh) {
   const std::size_t nt = mesh.triangles.size();
   std::vector<Vec3> face_normal(nt);  // area-weighted (length = 2 × area)

@@ -22,11 +22,16 @@ GLuint link_program(const char* vert_name, const char* frag_name);
 struct Mesh {
   GLuint vao = 0, vbo = 0, ebo = 0;
   GLsizei count = 0;
+  /// A marked sphere: its first `marked` indices are the marking (drawn in a second colour).
+  GLsizei marked = 0;
   void release();  ///< deletes the GL objects (an explicit call: the context must be current)
 };
 
 Mesh make_cube();                                     ///< [-0.5, 0.5]³, flat face normals
 Mesh make_sphere(int rings = 16, int segments = 32);  ///< diameter 1, smooth normals
+/// The same sphere, its triangles ordered so that the first `marked` indices are every other
+/// octant (x·y·z > 0): drawn in a second colour, the marking shows the ball's spin.
+Mesh make_marked_sphere(int rings = 16, int segments = 32);
 Mesh make_floor_quad();                               ///< [-1, 1]² at y = 0, normal +y
 /// A model's triangles (model frame), with normals computed per corner: the area-weighted
 /// average of the normals of the faces around the vertex that lie within 40° of the corner's

@@ -52,7 +52,7 @@ struct Renderer::Impl {
   Antialias antialias;
   Backdrop backdrop;
   GLuint mesh_program = 0, floor_program = 0, fxaa_program = 0;
-  Mesh cube, sphere, floor;
+  Mesh cube, sphere, ball, floor;
   GLuint empty_vao = 0;                           // the full-screen triangle needs no buffers
   GLuint ms_fbo = 0, ms_color = 0, ms_depth = 0;  // multisampled target (msaa)
   GLuint tex_color = 0;  // where fxaa reads the scene from: its edge rectangles, copied
@@ -86,7 +86,7 @@ struct Renderer::Impl {
   }
 
   ~Impl() {
-    for (Mesh* m : {&cube, &sphere, &floor}) m->release();
+    for (Mesh* m : {&cube, &sphere, &ball, &floor}) m->release();
     for (Mesh& m : model_meshes) m.release();
     glDeleteVertexArrays(1, &empty_vao);
     for (GLuint program : {mesh_program, floor_program, fxaa_program}) glDeleteProgram(program);
@@ -150,6 +150,7 @@ struct Renderer::Impl {
     floor_program = link_program("floor.vert", "floor.frag");
     cube = make_cube();
     sphere = make_sphere();
+    ball = make_marked_sphere();
     floor = make_floor_quad();
     // Each model is uploaded once; a frame only sets its transform.
     model_meshes.resize(scene.bodies.size());
@@ -412,6 +413,15 @@ struct Renderer::Impl {
     set(mesh_program, "u_model", model);
     set(mesh_program, "u_normal_matrix", Mat3(model.block<3, 3>(0, 0).inverse().transpose()));
     set(mesh_program, "u_color", color_of(scene.bodies[i].color));
+    if (scene.bodies[i].shape == Shape::Sphere) {
+      // The marking: every other octant in the body's colour lightened halfway to white.
+      glBindVertexArray(ball.vao);
+      glDrawElements(GL_TRIANGLES, ball.count - ball.marked, GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(sizeof(unsigned) * std::size_t(ball.marked)));
+      set(mesh_program, "u_color", Vec3(0.5 * (color_of(scene.bodies[i].color) + Vec3::Ones())));
+      glDrawElements(GL_TRIANGLES, ball.marked, GL_UNSIGNED_INT, nullptr);
+      return;
+    }
     draw_mesh(i);
   }
 
@@ -538,9 +548,11 @@ struct Renderer::Impl {
   }
 
   void draw_mesh(std::size_t i) {
-    const Mesh& mesh = scene.bodies[i].shape == Shape::Mesh       ? model_meshes[i]
-                       : scene.bodies[i].shape == Shape::Particle ? sphere
-                                                                  : cube;
+    const Shape shape = scene.bodies[i].shape;
+    const Mesh& mesh = shape == Shape::Mesh       ? model_meshes[i]
+                       : shape == Shape::Sphere   ? ball
+                       : shape == Shape::Particle ? sphere
+                                                  : cube;
     glBindVertexArray(mesh.vao);
     glDrawElements(GL_TRIANGLES, mesh.count, GL_UNSIGNED_INT, nullptr);
   }

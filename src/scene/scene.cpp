@@ -10,6 +10,8 @@ std::string_view to_string(Shape shape) {
       return "particle";
     case Shape::Mesh:
       return "mesh";
+    case Shape::Sphere:
+      return "sphere";
   }
   return "?";
 }

@@ -20,8 +20,9 @@ namespace tumble {
 namespace {
 
 // The tables a scene may have, in the order the documentation lists them.
-constexpr std::array<std::string_view, 6> kTableNames = {"simulation", "floor", "render",
-                                                         "camera",     "light", "body"};
+constexpr std::array<std::string_view, 7> kTableNames = {
+    "simulation", "floor", "render", "camera", "light", "body", "pair"};
+constexpr std::array<std::string_view, 2> kCollisionNames = {"all", "floor"};
 
 // Colours of bodies that name none, by body order; the first is the seed's orange box.
 constexpr std::array<Color, 6> kPalette = {Color{0xd9, 0x57, 0x2b}, Color{0x2b, 0x7b, 0xd9},
@@ -39,7 +40,7 @@ SimulationSettings read_simulation(const toml::table& table, const std::string& 
                                    const TimeOverrides& overrides) {
   const TableReader r(table, "[simulation]", file,
                       {"duration", "dt", "integrator", "tolerance", "rotation", "gravity",
-                       "linear_drag", "angular_drag"});
+                       "linear_drag", "angular_drag", "collisions"});
   SimulationSettings s;
   // The upper bound (about 11.6 days) keeps the step and frame counts of a run sane.
   s.duration_s = r.number("duration", {0.0, 1e6, true, false}).value_or(s.duration_s);
@@ -62,6 +63,7 @@ SimulationSettings read_simulation(const toml::table& table, const std::string& 
   s.gravity = r.vec3("gravity").value_or(s.gravity);
   s.linear_drag = r.number("linear_drag", kNonNegative).value_or(s.linear_drag);
   s.angular_drag = r.number("angular_drag", kNonNegative).value_or(s.angular_drag);
+  if (const auto i = r.choice("collisions", kCollisionNames)) s.collisions = *i == 0;
   return s;
 }
 
@@ -168,18 +170,21 @@ Quat read_orientation(const toml::table& table, const std::string& file) {
 BodySpec read_body(const toml::table& table, std::size_t number, const std::string& file) {
   const TableReader r(
       table, "[[body]]", file,
-      {"name", "shape", "size", "mass", "density", "position", "orientation", "velocity",
-       "angular_velocity", "restitution", "color", "mesh", "scale", "repair"});
+      {"name", "shape", "size", "radius", "mass", "density", "position", "orientation",
+       "velocity", "angular_velocity", "restitution", "friction", "fixed", "color", "mesh",
+       "scale", "repair"});
   BodySpec b;
   b.where = r.where();
   b.name = r.string("name").value_or("body" + std::to_string(number));
   if (b.name.empty()) fail(r.where("name"), "name in [[body]] must not be empty");
 
   std::vector<std::string_view> shape_names;
-  for (const Shape shape : {Shape::Box, Shape::Particle, Shape::Mesh})
-    shape_names.push_back(to_string(shape));
+  // In the order SPEC lists them; Shape's enum order differs (sphere came later).
+  const std::array<Shape, 4> shapes = {Shape::Box, Shape::Sphere, Shape::Particle, Shape::Mesh};
+  for (const Shape shape : shapes) shape_names.push_back(to_string(shape));
   r.require("shape", "expected one of: " + join(shape_names));
-  b.shape = static_cast<Shape>(*r.choice("shape", shape_names));
+  b.shape = shapes[*r.choice("shape", shape_names)];
+  b.fixed = r.boolean("fixed").value_or(false);
   // Range-checked before their place, so a bad value is named before a misplaced key.
   b.scale = r.number_or_vec3("scale", kPositive).value_or(b.scale);
   const std::optional<std::size_t> repair = r.choice("repair", kMeshRepairNames);
@@ -199,18 +204,38 @@ BodySpec read_body(const toml::table& table, std::size_t number, const std::stri
     r.forbid("repair", "applies only to shape = \"mesh\"");
   }
 
+  if (b.shape == Shape::Sphere) {
+    r.require("radius", "a sphere needs its radius, m");
+    r.forbid("size", "does not apply to a sphere: give its radius");
+    b.radius_m = *r.number("radius", kPositive);
+    b.size = Vec3::Constant(2.0 * b.radius_m);
+  } else {
+    r.forbid("radius", "applies only to shape = \"sphere\"");
+  }
   if (b.shape == Shape::Box) r.require("size", "a box needs its full edge lengths [x, y, z], m");
   // A particle has no extent to simulate; its size is only how big it is drawn, m.
   if (b.shape == Shape::Particle) b.size = Vec3::Constant(0.1);
   b.size = r.vec3("size", kPositive).value_or(b.size);
 
-  b.mass = r.number("mass", kPositive);
-  b.density = r.number("density", kPositive);
-  if (b.shape == Shape::Particle)
-    r.forbid("density", "does not apply to a particle: it has no volume, give its mass");
-  if (b.mass && b.density) fail(r.where("density"), "give mass or density in [[body]], not both");
-  if (!b.mass && !b.density)
-    fail(r.where(), "missing key \"mass\" or \"density\" in [[body]] (kg or kg/m^3)");
+  if (b.fixed) {
+    // A fixed body does not move: it has no mass to give and no motion to start with.
+    if (b.shape == Shape::Particle)
+      fail(r.where("fixed"), "fixed in [[body]] does not apply to a particle: a fixed point "
+                             "meets nothing (use a small sphere or box)");
+    r.forbid("mass", "does not apply to a fixed body: it does not move");
+    r.forbid("density", "does not apply to a fixed body: it does not move");
+    r.forbid("velocity", "does not apply to a fixed body: it does not move");
+    r.forbid("angular_velocity", "does not apply to a fixed body: it does not move");
+    b.mass = 1.0;  // unused: a fixed body's inverse mass is zero
+  } else {
+    b.mass = r.number("mass", kPositive);
+    b.density = r.number("density", kPositive);
+    if (b.shape == Shape::Particle)
+      r.forbid("density", "does not apply to a particle: it has no volume, give its mass");
+    if (b.mass && b.density) fail(r.where("density"), "give mass or density in [[body]], not both");
+    if (!b.mass && !b.density)
+      fail(r.where(), "missing key \"mass\" or \"density\" in [[body]] (kg or kg/m^3)");
+  }
 
   b.position = r.vec3("position").value_or(b.position);
   b.velocity = r.vec3("velocity").value_or(b.velocity);
@@ -223,6 +248,7 @@ BodySpec read_body(const toml::table& table, std::size_t number, const std::stri
     b.orientation = read_orientation(*o, file);
   b.angular_velocity = r.vec3("angular_velocity").value_or(b.angular_velocity);
   b.restitution = r.number("restitution", kUnitInterval);
+  b.friction = r.number("friction", kNonNegative);
   b.color = r.color("color").value_or(kPalette[(number - 1) % kPalette.size()]);
   return b;
 }
@@ -254,6 +280,60 @@ std::vector<BodySpec> read_bodies(const toml::table& root, const std::string& fi
     bodies.push_back(std::move(body));
   }
   return bodies;
+}
+
+// `[[pair]]` entries: two body names (or "floor"), each pair once.
+std::vector<PairSpec> read_pairs(const toml::table& root, const std::string& file,
+                                 const std::vector<BodySpec>& bodies) {
+  std::vector<PairSpec> pairs;
+  const toml::node* node = root.get("pair");
+  if (!node) return pairs;
+  const toml::array* array = node->as_array();
+  if (!array)
+    fail(location(*node, file),
+         "pair must be an array of tables, written [[pair]], got " + std::string(type_name(*node)));
+  std::vector<std::string_view> names = {"floor"};
+  for (const BodySpec& b : bodies) names.push_back(b.name);
+  for (const toml::node& element : *array) {
+    const toml::table* table = element.as_table();
+    if (!table)
+      fail(location(element, file),
+           "each pair must be a table, written [[pair]], got " + std::string(type_name(element)));
+    const TableReader r(*table, "[[pair]]", file, {"bodies", "restitution", "friction", "collide"});
+    PairSpec p;
+    p.where = r.where();
+    r.require("bodies", "the two bodies' names, or a body and \"floor\": [\"a\", \"b\"]");
+    const toml::array* list = table->get("bodies")->as_array();
+    if (!list || list->size() != 2 || !(*list)[0].is_string() || !(*list)[1].is_string())
+      fail(r.where("bodies"), "bodies in [[pair]] must be two names, like [\"ball\", \"ramp\"]");
+    int index[2];
+    for (int k = 0; k < 2; ++k) {
+      const std::string& name = (*list)[static_cast<std::size_t>(k)].as_string()->get();
+      const auto it = std::find(names.begin(), names.end(), name);
+      if (it == names.end())
+        fail(location((*list)[static_cast<std::size_t>(k)], file),
+             "bodies in [[pair]] names no body: " + in_quotes(name) + suggestion(name, names));
+      index[k] = static_cast<int>(it - names.begin()) - 1;  // "floor" is -1
+    }
+    if (index[0] == index[1])
+      fail(r.where("bodies"), "bodies in [[pair]] names " +
+                                  in_quotes(names[static_cast<std::size_t>(index[0] + 1)]) +
+                                  " twice: a pair is two different bodies");
+    p.a = std::min(index[0], index[1]);
+    p.b = std::max(index[0], index[1]);
+    p.restitution = r.number("restitution", kUnitInterval);
+    p.friction = r.number("friction", kNonNegative);
+    p.collide = r.boolean("collide").value_or(true);
+    for (const PairSpec& q : pairs)
+      if (q.a == p.a && q.b == p.b)
+        fail(r.where("bodies"), "this pair of bodies is already given a [[pair]] on line " +
+                                    std::to_string(q.where.line));
+    pairs.push_back(p);
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const PairSpec& x, const PairSpec& y) {
+    return std::pair(x.a, x.b) < std::pair(y.a, y.b);
+  });
+  return pairs;
 }
 
 // A top-level table such as [render], or null when the file has none.
@@ -313,6 +393,7 @@ Scene parse_scene(std::string_view text, const std::string& source_name,
     scene.render = read_render(*t, source_name);
   // Bodies before the camera: `follow` must name one of them.
   scene.bodies = read_bodies(root, source_name);
+  scene.pairs = read_pairs(root, source_name, scene.bodies);
   if (const toml::table* t = section(root, "camera", source_name))
     scene.camera = read_camera(*t, source_name, scene.bodies);
   if (const toml::table* t = section(root, "light", source_name))

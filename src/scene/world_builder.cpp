@@ -21,6 +21,13 @@ void make_mesh_body(const BodySpec& spec, const MeshBody& model, BodyDef& b) {
   b.vertices.reserve(model.hull_vertices.size());
   for (const Vec3& v : model.hull_vertices)
     b.vertices.push_back(axes.transpose() * (v - mp.center_of_mass));
+  // The hull's faces for meeting other bodies (coplanar triangles merged). Its vertices are
+  // the hull's own, in the same (x, y, z) order as hull_vertices.
+  const ConvexHull hull = convex_hull(model.hull_vertices);
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& t : hull.mesh.triangles)
+    triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  b.faces = faces_from_triangles(b.vertices, triangles);
   // The model's size sets the scale of its contact tolerances: its largest extent.
   Vec3 lo = model.mesh.vertices.front(), hi = lo;
   for (const Vec3& v : model.mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
@@ -31,6 +38,12 @@ BodyDef make_body(const BodySpec& spec, double default_restitution, const MeshBo
   BodyDef b;
   b.name = spec.name;
   b.particle = spec.shape == Shape::Particle;
+  b.shape = spec.shape == Shape::Particle ? ShapeKind::Particle
+            : spec.shape == Shape::Sphere ? ShapeKind::Sphere
+            : spec.shape == Shape::Box    ? ShapeKind::Box
+                                          : ShapeKind::Hull;
+  b.fixed = spec.fixed;
+  b.friction = spec.friction;
   b.restitution = spec.restitution.value_or(default_restitution);
   b.position = spec.position;
   b.orientation = spec.orientation;
@@ -47,11 +60,21 @@ BodyDef make_body(const BodySpec& spec, double default_restitution, const MeshBo
     make_mesh_body(spec, *model, b);
     return b;
   }
+  if (spec.shape == Shape::Sphere) {
+    const double volume = 4.0 / 3.0 * kPi * std::pow(spec.radius_m, 3);
+    b.mass_kg = spec.mass ? *spec.mass : *spec.density * volume;
+    b.radius_m = spec.radius_m;
+    b.inertia_body = sphere_inertia(b.mass_kg, spec.radius_m);
+    b.vertices = {Vec3::Zero()};
+    b.length_m = 2.0 * spec.radius_m;
+    return b;
+  }
   assert(spec.shape == Shape::Box);
   const double volume = spec.size.prod();
   b.mass_kg = spec.mass ? *spec.mass : *spec.density * volume;
   b.inertia_body = box_inertia(b.mass_kg, spec.size);
   b.vertices = box_corners(spec.size);
+  b.faces = box_faces();
   return b;
 }
 
@@ -93,17 +116,22 @@ WorldDef make_world_def(const Scene& scene, const SceneModels& models) {
   def.linear_drag = sim.linear_drag;
   def.angular_drag = sim.angular_drag;
   if (scene.floor) def.floor = FloorDef{scene.floor->height, scene.floor->friction};
+  def.collisions = sim.collisions;
+  for (const PairSpec& p : scene.pairs)
+    def.pairs.push_back({p.a, p.b, p.restitution, p.friction, p.collide});
   const double default_restitution = scene.floor ? scene.floor->restitution : 0.5;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const BodySpec& spec = scene.bodies[i];
     def.bodies.push_back(make_body(spec, default_restitution, models.model(i)));
-    if (!def.floor) continue;
+    // A fixed body may sit in the floor: it never meets it.
+    if (!def.floor || spec.fixed) continue;
     // A body must start on or above the floor: a start inside it has no physical meaning.
     const RigidBody body(def.bodies.back());
     const double touch =
         ContactTolerances::for_body(length_scale(def.bodies.back()), def.gravity, def.dt_s).touch_m;
     double lowest = INFINITY;
-    for (const Vec3& v : body.vertices()) lowest = std::min(lowest, (body.state.R * v).y());
+    for (int v = 0; v < static_cast<int>(body.vertices().size()); ++v)
+      lowest = std::min(lowest, body.vertex_offset(body.state.R, v).y());
     const double depth = def.floor->height - (body.state.x.y() + lowest);
     if (depth > touch) {
       std::ostringstream msg;
@@ -112,6 +140,13 @@ WorldDef make_world_def(const Scene& scene, const SceneModels& models) {
           << ", the floor at y = " << def.floor->height << ")";
       throw Error(ErrorKind::BadInput, msg.str(), spec.where);
     }
+  }
+  // Two bodies that start inside each other have no physical meaning either.
+  for (const StartOverlap& o : overlaps_at_start(def)) {
+    std::ostringstream msg;
+    msg << "bodies \"" << scene.bodies[o.a].name << "\" and \"" << scene.bodies[o.b].name
+        << "\" overlap by " << o.depth_m << " m at t = 0";
+    throw Error(ErrorKind::BadInput, msg.str(), scene.bodies[o.b].where);
   }
   return def;
 }

@@ -47,9 +47,15 @@ void BodyDynamics::solve_contacts(const BodyState& s, const Kinematics& k, doubl
   Vec3 r[8];
   for (Vec3& ri : r) ri.setZero();  // only the first n are used
   LcpVector b(n);
+  // The constrained point of a sphere is its lowest point, which stays straight below the
+  // centre however it turns: it moves with the centre (its lever is zero here), whereas a
+  // material point of the rim would read a rolling ball's centripetal ω² r as lifting off.
+  const bool round = body_.is_sphere();
+  Vec3 p[8];
   for (int i = 0; i < n; ++i) {
-    r[i] = k.R * body_.vertices()[idx[i]];
-    b(i) = normal.dot(a_cm + alpha.cross(r[i]) + k.omega.cross(k.omega.cross(r[i])));
+    r[i] = body_.vertex_offset(k.R, idx[i]);
+    p[i] = round ? Vec3(Vec3::Zero()) : r[i];
+    b(i) = normal.dot(a_cm + alpha.cross(p[i]) + k.omega.cross(k.omega.cross(p[i])));
   }
   // Each point's force acts along n + d_j: d_j = −mu û_j for a sliding point (Coulomb kinetic
   // friction proportional to the normal force), 0 otherwise. A_ij is the normal acceleration at i
@@ -59,7 +65,7 @@ void BodyDynamics::solve_contacts(const BodyState& s, const Kinematics& k, doubl
   for (int j = 0; j < n; ++j) {
     const Vec3 e = normal + friction_direction(k, r[j], j);
     const Vec3 dalpha = k.Iinv * r[j].cross(e);
-    for (int i = 0; i < n; ++i) A(i, j) = normal.dot(e * inv_m + dalpha.cross(r[i]));
+    for (int i = 0; i < n; ++i) A(i, j) = normal.dot(e * inv_m + dalpha.cross(p[i]));
   }
   const LcpVector sol = solve_lcp(A, b);
   for (int i = 0; i < n; ++i) f[i] = sol(i);
@@ -106,7 +112,7 @@ bool BodyDynamics::add_face_wrench(const BodyState& s, Kinematics& k) const {
   if (n < 3 || body_.is_particle() || forces_.general_contact_only) return false;
   const auto idx = resting_->indices();
   Vec3 r[ContactSet::kMaxPoints];
-  for (int i = 0; i < n; ++i) r[i] = k.R * body_.vertices()[idx[i]];
+  for (int i = 0; i < n; ++i) r[i] = body_.vertex_offset(k.R, idx[i]);
   Vec3 d = Vec3::Zero();
   if (resting_->friction > 0.0 && resting_->sliding[0]) {
     // One slip direction and one height, to 1e-12 (of mu, of the body's extent): closer than
@@ -181,7 +187,7 @@ Rate BodyDynamics::operator()(const BodyState& s) const {
     solve_contacts(s, k, f);
     const auto idx = resting_->indices();
     for (int i = 0; i < resting_->count; ++i) {
-      const Vec3 r = k.R * body_.vertices()[idx[i]];
+      const Vec3 r = body_.vertex_offset(k.R, idx[i]);
       const Vec3 force = f[i] * (Vec3::UnitY() + friction_direction(k, r, i));
       k.F += force;
       if (!body_.is_particle()) k.tau += r.cross(force);

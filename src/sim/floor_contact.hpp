@@ -10,6 +10,7 @@ namespace tumble {
 
 /// Height of vertex i above the floor in state s.
 inline double vertex_gap(const RigidBody& b, const BodyState& s, int i, double floor_height) {
+  if (b.is_sphere()) return s.x.y() - b.radius() - floor_height;  // its lowest point
   return s.x.y() + s.R.row(1).dot(b.vertices()[i]) - floor_height;
 }
 

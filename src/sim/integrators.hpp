@@ -38,4 +38,14 @@ BodyState integrate(const BodyDynamics& f, const BodyState& s, double h, const S
 /// Renormalises the live orientation form and derives the other from it.
 void normalize_orientation(BodyState& s, RotationRep rep);
 
+/// Symmetric orthonormalisation R (RᵀR)^(-1/2) (Newton–Schulz).
+Mat3 orthonormalize(const Mat3& R);
+/// | |q| - 1 | or ||RᵀR - I||: how far the live orientation form drifted.
+double orientation_drift(const BodyState& s, RotationRep rep);
+/// The adaptive error of one body's step estimate (dx, dP, dL, dq or dR) against its scales in
+/// `how`, divided by the tolerance: <= 1 accepts the step.
+double body_scaled_error(const RigidBody& b, RotationRep rep, const BodyState& s, const Vec3& dx,
+                         const Vec3& dP, const Vec3& dL, const Vec4& dq, const Mat3& dR,
+                         const Stepping& how);
+
 }  // namespace tumble

@@ -67,4 +67,124 @@ LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b) {
   return f;
 }
 
+namespace {
+
+// Minimum-norm solution of A[C, C] x = rhs[C] for the rows in `set`.
+Eigen::VectorXd solve_subset(const Eigen::MatrixXd& A, const std::vector<int>& set,
+                             const Eigen::VectorXd& rhs) {
+  const int k = static_cast<int>(set.size());
+  Eigen::MatrixXd As(k, k);
+  Eigen::VectorXd bs(k);
+  for (int r = 0; r < k; ++r) {
+    bs(r) = rhs(set[r]);
+    for (int c = 0; c < k; ++c) As(r, c) = A(set[r], set[c]);
+  }
+  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(As).solve(bs);
+}
+
+void projected_gauss_seidel(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
+                            Eigen::VectorXd& f) {
+  const int n = static_cast<int>(b.size());
+  for (int iter = 0; iter < 500; ++iter)
+    for (int i = 0; i < n; ++i)
+      if (A(i, i) > 0.0) f(i) = std::max(0.0, f(i) - (A.row(i).dot(f) + b(i)) / A(i, i));
+}
+
+}  // namespace
+
+bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+                        std::vector<char>& active) {
+  const int n = static_cast<int>(b.size());
+  f = Eigen::VectorXd::Zero(n);
+  active.resize(static_cast<std::size_t>(n), 0);
+  if (n == 0) return true;
+  const double scale_w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  const double scale_f = scale_w / std::max(A.cwiseAbs().maxCoeff(), 1e-300);
+  // Warm start: the last clamped set, solved at once; kept if it is complementary (the usual
+  // case for contacts that did not change mode since the last evaluation).
+  std::vector<int> C;
+  for (int i = 0; i < n; ++i)
+    if (active[i]) C.push_back(i);
+  if (!C.empty()) {
+    const Eigen::VectorXd fc = solve_subset(A, C, -b);
+    bool ok = (fc.array() >= -scale_f).all();
+    if (ok) {
+      for (std::size_t r = 0; r < C.size(); ++r) f(C[r]) = std::max(fc(r), 0.0);
+      const Eigen::VectorXd w = A * f + b;
+      for (int i = 0; i < n && ok; ++i)
+        ok = active[i] ? std::abs(w(i)) <= 1e3 * scale_w : w(i) >= -scale_w;
+    }
+    if (ok) return true;
+    f.setZero();
+    C.clear();
+  }
+  // Dantzig / Baraff: f = 0, a = b; drive every row with a < 0 to a = 0 or f = 0.
+  std::vector<char> clamped(static_cast<std::size_t>(n), 0);
+  Eigen::VectorXd a = b;
+  int pivots = 0;
+  const int budget = 10 * n + 50;
+  for (int d = 0; d < n; ++d) {
+    if (a(d) >= -scale_w) continue;
+    // Drive row d.
+    while (a(d) < -scale_w) {
+      if (++pivots > budget) {
+        f.setZero();
+        projected_gauss_seidel(A, b, f);
+        std::fill(active.begin(), active.end(), 0);
+        return false;
+      }
+      // Direction: Δf_d = 1, the clamped rows keep Δa = 0: A_CC Δf_C = −A_Cd.
+      std::vector<int> set;
+      for (int i = 0; i < n; ++i)
+        if (clamped[i]) set.push_back(i);
+      Eigen::VectorXd df = Eigen::VectorXd::Zero(n);
+      df(d) = 1.0;
+      if (!set.empty()) {
+        const Eigen::VectorXd x = solve_subset(A, set, -A.col(d));
+        for (std::size_t r = 0; r < set.size(); ++r) df(set[r]) = x(r);
+      }
+      const Eigen::VectorXd da = A * df;
+      // The largest step that keeps f >= 0 on clamped rows and a >= 0 on the free ones.
+      double s = INFINITY;
+      int j = -1;
+      if (da(d) > 0.0) s = -a(d) / da(d), j = d;
+      for (int i = 0; i < n; ++i) {
+        if (i == d) continue;
+        if (clamped[i] && df(i) < 0.0) {
+          const double si = -f(i) / df(i);
+          if (si < s) s = si, j = i;
+        } else if (!clamped[i] && f(i) == 0.0 && da(i) < 0.0 && a(i) >= -scale_w) {
+          const double si = std::max(0.0, -a(i)) / -da(i);
+          if (si < s) s = si, j = i;
+        }
+      }
+      if (j < 0 || !std::isfinite(s)) {  // unbounded: no solution reachable (friction)
+        f.setZero();
+        projected_gauss_seidel(A, b, f);
+        std::fill(active.begin(), active.end(), 0);
+        return false;
+      }
+      f += s * df;
+      a += s * da;
+      if (j == d) {
+        clamped[d] = 1;
+        a(d) = 0.0;
+        break;
+      }
+      if (clamped[j]) {
+        clamped[j] = 0;
+        f(j) = 0.0;
+      } else {
+        clamped[j] = 1;
+        a(j) = 0.0;
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    f(i) = std::max(f(i), 0.0);
+    active[i] = clamped[i];
+  }
+  return true;
+}
+
 }  // namespace tumble

@@ -6,6 +6,7 @@
 // rows are linearly dependent) gets a symmetric answer.
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace tumble {
 
@@ -17,5 +18,17 @@ using LcpVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLcpSize, 1>;
 /// Returns f. Exact for n <= kMaxLcpSize when a solution exists (always, for PSD A coming from
 /// contact); falls back to projected Gauss–Seidel in a fixed order if no active set verifies.
 LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b);
+
+/// The same problem of any size, for the contacts of an island of bodies: Dantzig's principal
+/// pivoting as Baraff gives it ("Fast contact force computation for nonpenetrating rigid
+/// bodies", 1994): each violated row is driven to complementarity in turn while the clamped set
+/// keeps its rows at zero; clamped subsystems are solved for their minimum-norm solution, so
+/// redundant contacts (a face resting on a face: 4 coplanar points) are taken as they come.
+/// Starts from `active` (the clamped set of the last solve, warm start; may be empty) and
+/// writes the final clamped set back. Returns false when it could not finish within its pivot
+/// budget or A (with sliding friction, not symmetric) has no solution it can reach; `f` is then
+/// the projected Gauss–Seidel answer, and the caller reports it.
+bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+                        std::vector<char>& active);
 
 }  // namespace tumble

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "collide.hpp"
 #include "dynamics.hpp"
 #include "floor_contact.hpp"
 #include "integrators.hpp"
@@ -80,9 +81,24 @@ double length_scale(const BodyDef& body) {
 
 World::World(const WorldDef& def) : def_(def) {
   assert(def.dt_s > 0.0);
+  assert(std::is_sorted(def.pairs.begin(), def.pairs.end(), [](const PairDef& x, const PairDef& y) {
+    return std::pair(x.a, x.b) < std::pair(y.a, y.b);
+  }));
+  const double floor_mu = def.floor ? def.floor->friction : 0.0;
   bodies_.reserve(def.bodies.size());
-  for (const BodyDef& b : def.bodies) {
-    bodies_.emplace_back(b);
+  for (std::size_t i = 0; i < def.bodies.size(); ++i) {
+    const BodyDef& b = def.bodies[i];
+    own_restitution_.push_back(b.restitution);
+    own_friction_.push_back(b.friction.value_or(floor_mu));
+    floor_friction_.push_back(own_friction_.back());
+    // Against the floor: the scene's [[pair]] with "floor" where it has one.
+    BodyDef against_floor = b;
+    for (const PairDef& p : def.pairs)
+      if (p.a == kFloorBody && p.b == static_cast<int>(i)) {
+        if (p.restitution) against_floor.restitution = *p.restitution;
+        if (p.friction) floor_friction_.back() = *p.friction;
+      }
+    bodies_.emplace_back(against_floor);
     // The 2 g dt floor of the rest speed is for fixed steps, whose contact drift is O(g dt) a
     // step; the adaptive integrator controls its error in every substep, so it bounces down to
     // the small-dt limit whatever its largest step.
@@ -93,7 +109,85 @@ World::World(const WorldDef& def) : def_(def) {
     flight_start_known_.push_back(true);
   }
   controllers_.resize(bodies_.size());
+  // Islands are looked for only when some pair of bodies can meet: a scene of one body, or of
+  // bodies that pass through each other, is stepped body by body as it always was.
+  if (def.collisions)
+    for (std::size_t i = 0; i < bodies_.size() && !meets_bodies_; ++i)
+      for (std::size_t j = i + 1; j < bodies_.size() && !meets_bodies_; ++j)
+        meets_bodies_ = pair_collides(static_cast<int>(i), static_cast<int>(j));
   for (std::size_t i = 0; i < bodies_.size(); ++i) check_finite(i);  // the start is written too
+}
+
+namespace {
+
+// Whether bodies a and b of def (a may be the floor) meet when they touch.
+bool can_meet(const WorldDef& def, const std::vector<RigidBody>& bodies, int a, int b) {
+  if (a > b) std::swap(a, b);
+  if (a == kFloorBody) {
+    if (!def.floor || bodies[b].is_fixed()) return false;
+  } else {
+    const RigidBody &x = bodies[a], &y = bodies[b];
+    if (!def.collisions) return false;
+    if (x.is_fixed() && y.is_fixed()) return false;
+    if (x.is_particle() && y.is_particle()) return false;
+  }
+  for (const PairDef& p : def.pairs)
+    if (p.a == a && p.b == b) return p.collide;
+  return true;
+}
+
+}  // namespace
+
+bool World::pair_collides(int a, int b) const {
+  return can_meet(def_, bodies_, a, b);
+}
+
+std::vector<StartOverlap> overlaps_at_start(const WorldDef& def) {
+  std::vector<RigidBody> bodies;
+  for (const BodyDef& b : def.bodies) bodies.emplace_back(b);
+  std::vector<StartOverlap> out;
+  const int n = static_cast<int>(bodies.size());
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      if (!can_meet(def, bodies, i, j)) continue;
+      const RigidBody &a = bodies[i], &b = bodies[j];
+      // Far apart: their bounding spheres do not meet.
+      if ((a.state.x - b.state.x).norm() > a.bounding_radius() + b.bounding_radius()) continue;
+      const double touch =
+          std::min(Tol::for_body(length_scale(def.bodies[i]), def.gravity, def.dt_s).touch_m,
+                   Tol::for_body(length_scale(def.bodies[j]), def.gravity, def.dt_s).touch_m);
+      const double sep = separation(a, pose_of(a.state), b, pose_of(b.state));
+      if (sep < -touch) out.push_back({i, j, -sep});
+    }
+  return out;
+}
+
+std::pair<double, double> World::pair_material(int a, int b) const {
+  if (a > b) std::swap(a, b);
+  if (a == kFloorBody) return {bodies_[b].restitution(), floor_friction_[b]};
+  double e = std::max(own_restitution_[a], own_restitution_[b]);
+  double mu = std::sqrt(own_friction_[a] * own_friction_[b]);
+  for (const PairDef& p : def_.pairs)
+    if (p.a == a && p.b == b) {
+      if (p.restitution) e = *p.restitution;
+      if (p.friction) mu = *p.friction;
+    }
+  return {e, mu};
+}
+
+PairContactStats& World::pair_stats(int a, int b) {
+  if (a > b) std::swap(a, b);
+  auto& v = stats_.pairs;
+  auto it = std::lower_bound(v.begin(), v.end(), std::pair(a, b),
+                             [](const PairContactStats& p, const std::pair<int, int>& key) {
+                               return std::pair(p.a, p.b) < key;
+                             });
+  if (it == v.end() || it->a != a || it->b != b) {
+    PairContactStats fresh;
+    fresh.a = a, fresh.b = b;
+    it = v.insert(it, fresh);
+  }
+  return *it;
 }
 
 bool same_poses(const World& a, const World& b) {
@@ -112,7 +206,7 @@ double World::total_energy() const {
 }
 
 void World::step() {
-  for (std::size_t i = 0; i < bodies_.size(); ++i) advance_body(i, def_.dt_s);
+  advance_all(def_.dt_s);
   ++steps_;
   // Time from the step count, never accumulated: t_n = n·dt exactly as the sampler computes it.
   time_ = static_cast<double>(steps_) * def_.dt_s;
@@ -120,7 +214,7 @@ void World::step() {
 
 void World::advance(double h) {
   assert(h > 0.0 && h <= def_.dt_s * (1.0 + 1e-12));
-  for (std::size_t i = 0; i < bodies_.size(); ++i) advance_body(i, h);
+  advance_all(h);
   time_ += h;
 }
 
@@ -254,7 +348,9 @@ void World::check_free_flight(std::size_t i, bool contact) {
 void World::record_impact(std::size_t i, double t, double speed) {
   ++stats_.impacts;
   if (stats_.events.size() < ContactStats::kMaxRecordedImpacts)
-    stats_.events.push_back({t, static_cast<int>(i), speed});
+    stats_.events.push_back({t, static_cast<int>(i), speed, kFloorBody});
+  PairContactStats& p = pair_stats(kFloorBody, static_cast<int>(i));
+  if (p.impacts++ == 0) p.first_impact_t_s = t;
 }
 
 // The fix a diagnostic of integration error names: a higher-order integrator where there is
@@ -268,7 +364,7 @@ std::string World::smaller_step_fix() const {
 
 void World::advance_body(std::size_t index, double h) {
   RigidBody& b = bodies_[index];
-  if (b.at_rest) return;  // static equilibrium: the exact motion over any step is none
+  if (b.at_rest || b.is_fixed()) return;  // the exact motion over any step is none
   const ForceModel forces{def_.gravity, def_.linear_drag, def_.angular_drag,
                           def_.general_contact_only};
   if (!def_.floor) {
@@ -282,7 +378,7 @@ void World::advance_body(std::size_t index, double h) {
   }
   const Tol& tol = tolerances_[index];
   const double floor_y = def_.floor->height;
-  const double mu = def_.floor->friction;
+  const double mu = floor_friction_[index];
   const double rest_speed = tol.rest_speed_mps;
   if (can_rest(b, touching_vertices(b, floor_y, tol.touch_m, rest_speed), def_.gravity,
                tol.sleep_speed_mps)) {
@@ -403,6 +499,8 @@ void World::advance_body(std::size_t index, double h) {
       // Integration drift of held points is removed by a lift; it counts as penetration.
       const double depth = lift_out_of_floor(b, resting, floor_y);
       stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
+      PairContactStats& touched = pair_stats(kFloorBody, static_cast<int>(index));
+      touched.deepest_penetration_m = std::max(touched.deepest_penetration_m, depth);
       // A lift by `depth` along +y gains exactly the potential energy -m g_y depth.
       stats_.max_energy_gain_J =
           std::max(stats_.max_energy_gain_J, -b.mass() * def_.gravity.y() * depth);
@@ -441,6 +539,8 @@ void World::advance_body(std::size_t index, double h) {
         const double depth = std::max(0.0, -lowest_gap(b, b.state, floor_y));
         b.state.x.y() += depth;
         stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
+        PairContactStats& touched = pair_stats(kFloorBody, static_cast<int>(index));
+        touched.deepest_penetration_m = std::max(touched.deepest_penetration_m, depth);
         remaining = 0.0;
       }
     }

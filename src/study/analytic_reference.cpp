@@ -164,9 +164,16 @@ std::optional<std::string> analytic_obstacle(const StudySetup& setup) {
     if (g.x() != 0.0 || g.z() != 0.0) return "gravity is not perpendicular to the floor";
     if (g.y() > 0.0) return "gravity points away from the floor";
   }
+  if (def.collisions)
+    for (std::size_t i = 0; i < setup.bodies.size(); ++i)
+      for (std::size_t j = i + 1; j < setup.bodies.size(); ++j)
+        if (!setup.bodies[i].is_particle() || !setup.bodies[j].is_particle())
+          return "its bodies may meet each other";
   for (std::size_t i = 0; i < setup.bodies.size(); ++i) {
     const RigidBody& b = setup.bodies[i];
     const std::string name = "body \"" + b.name() + "\"";
+    if (b.is_sphere()) return name + " is a sphere (it may roll)";
+    if (b.is_fixed()) return name + " is fixed";
     if (!b.is_particle() && b.state.L != Vec3::Zero()) return name + " spins";
     if (!def.floor) continue;
     const Vec3 v = b.velocity();

@@ -580,12 +580,12 @@ TEST(SceneLoader, BodyNameMustBeUniqueAndNonEmpty) {
 
 TEST(SceneLoader, ShapeIsRequired) {
   EXPECT_TRUE(FailsAt("[[body]]\nsize = [1, 1, 1]\nmass = 1\n", 1, 1,
-                      R"(missing key "shape" in [[body]] (expected one of: box, particle, mesh))"));
+                      R"(missing key "shape" in [[body]] (expected one of: box, sphere, particle, mesh))"));
 }
 
 TEST(SceneLoader, UnknownShapeListsTheChoices) {
-  EXPECT_TRUE(FailsAt("[[body]]\nshape = \"sphere\"\nmass = 1\n", 2, 9,
-                      R"(unknown shape "sphere" (expected one of: box, particle, mesh))"));
+  EXPECT_TRUE(FailsAt("[[body]]\nshape = \"cylinder\"\nmass = 1\n", 2, 9,
+                      R"(unknown shape "cylinder" (expected one of: box, sphere, particle, mesh))"));
 }
 
 TEST(SceneLoader, MeshBodyResolvesItsFileAgainstTheScenesFolder) {

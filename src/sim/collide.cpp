@@ -1,0 +1,415 @@
+#include "collide.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <vector>
+
+#include "support_polygon.hpp"
+
+namespace tumble {
+namespace {
+
+bool is_round(const RigidBody& b) {
+  return b.shape() == ShapeKind::Sphere || b.shape() == ShapeKind::Particle;
+}
+double radius_of(const RigidBody& b) {
+  return b.shape() == ShapeKind::Sphere ? b.radius() : 0.0;
+}
+
+std::vector<Vec3> world_vertices(const RigidBody& b, const Pose& p) {
+  std::vector<Vec3> w;
+  w.reserve(b.vertices().size());
+  for (const Vec3& v : b.vertices()) w.push_back(p.x + p.R * v);
+  return w;
+}
+
+// The manifold with a and b exchanged: the normal reversed, each point's two ends swapped.
+Manifold swapped(Manifold m) {
+  m.normal = -m.normal;
+  m.normal_of_b = !m.normal_of_b;
+  for (int i = 0; i < m.count; ++i) std::swap(m.points[i].on_a, m.points[i].on_b);
+  return m;
+}
+
+// --- round shapes -------------------------------------------------------------------------
+
+Manifold round_round(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
+                     double margin) {
+  Manifold m;
+  const Vec3 d = pb.x - pa.x;
+  const double length = d.norm();
+  // Concentric: any direction separates them equally; +y keeps it deterministic.
+  m.normal = length > 0.0 ? Vec3(d / length) : Vec3(Vec3::UnitY());
+  const double sep = length - radius_of(a) - radius_of(b);
+  if (sep > margin) return m;
+  m.count = 1;
+  m.points[0] = {pa.x + radius_of(a) * m.normal, pb.x - radius_of(b) * m.normal, sep, 0};
+  return m;
+}
+
+// The point of polyhedron h (world vertices w) closest to c, the signed distance of c from it
+// (negative inside) and the outward unit normal there.
+struct Closest {
+  Vec3 point = Vec3::Zero();
+  double distance = INFINITY;
+  Vec3 normal = Vec3::UnitY();
+  std::uint32_t feature = 0;
+};
+
+Vec3 closest_on_segment(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 e = b - a;
+  const double ee = e.squaredNorm();
+  const double t = ee > 0.0 ? std::clamp((c - a).dot(e) / ee, 0.0, 1.0) : 0.0;
+  return a + t * e;
+}
+
+Closest closest_on_polyhedron(const RigidBody& h, const Pose& p, const std::vector<Vec3>& w,
+                              const Vec3& c) {
+  const auto& faces = h.faces();
+  // The deepest face plane: c is inside when every face plane has it behind.
+  double deepest = -INFINITY;
+  int deepest_face = 0;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Vec3 n = p.R * faces[f].normal;
+    const double s = n.dot(c - w[faces[f].vertices[0]]);
+    if (s > deepest) deepest = s, deepest_face = static_cast<int>(f);
+  }
+  Closest best;
+  if (deepest <= 0.0) {
+    best.normal = p.R * faces[deepest_face].normal;
+    best.point = c - deepest * best.normal;
+    best.distance = deepest;
+    best.feature = static_cast<std::uint32_t>(deepest_face);
+    return best;
+  }
+  // Outside: the closest point lies on a face that c is in front of, inside it or on its rim.
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Vec3 n = p.R * faces[f].normal;
+    const auto& v = faces[f].vertices;
+    const double s = n.dot(c - w[v[0]]);
+    if (s <= 0.0) continue;
+    const Vec3 q = c - s * n;
+    bool inside = true;
+    for (std::size_t i = 0; i < v.size() && inside; ++i) {
+      const Vec3& a = w[v[i]];
+      const Vec3& b = w[v[(i + 1) % v.size()]];
+      inside = (b - a).cross(n).dot(q - a) <= 0.0;
+    }
+    if (inside) {
+      if (s < best.distance)
+        best = {q, s, n, static_cast<std::uint32_t>(f)};
+      continue;
+    }
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Vec3 e = closest_on_segment(w[v[i]], w[v[(i + 1) % v.size()]], c);
+      const double d = (c - e).norm();
+      if (d < best.distance)
+        best = {e, d, d > 0.0 ? Vec3((c - e) / d) : n,
+                static_cast<std::uint32_t>(0x10000u | (f << 8) | i)};
+    }
+  }
+  return best;
+}
+
+// Round a against polyhedron b.
+Manifold round_polyhedron(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
+                          double margin) {
+  Manifold m;
+  const Closest q = closest_on_polyhedron(b, pb, world_vertices(b, pb), pa.x);
+  // From a to b: against the outward normal of b where a's centre is.
+  m.normal = -q.normal;
+  m.normal_of_b = true;
+  const double r = radius_of(a);
+  const double sep = q.distance - r;
+  if (sep > margin) return m;
+  m.count = 1;
+  m.points[0] = {pa.x + r * m.normal, q.point, sep, q.feature};
+  return m;
+}
+
+double round_polyhedron_separation(const RigidBody& a, const Pose& pa, const RigidBody& b,
+                                   const Pose& pb) {
+  return closest_on_polyhedron(b, pb, world_vertices(b, pb), pa.x).distance - radius_of(a);
+}
+
+// --- polyhedra: the separating-axis test ----------------------------------------------------
+
+struct FaceQuery {
+  int face = -1;
+  double separation = -INFINITY;
+};
+
+// The face of `ref` whose plane has the incident body's vertices farthest in front of it.
+FaceQuery query_faces(const RigidBody& ref, const Pose& pr, const std::vector<Vec3>& wr,
+                      const std::vector<Vec3>& wi) {
+  FaceQuery best;
+  const auto& faces = ref.faces();
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    const Vec3 n = pr.R * faces[f].normal;
+    const double d = n.dot(wr[faces[f].vertices[0]]);
+    double lowest = INFINITY;
+    for (const Vec3& v : wi) lowest = std::min(lowest, n.dot(v));
+    if (lowest - d > best.separation) best = {static_cast<int>(f), lowest - d};
+  }
+  return best;
+}
+
+struct EdgeQuery {
+  int edge_a = -1, edge_b = -1;
+  double separation = -INFINITY;
+  Vec3 axis = Vec3::UnitY();
+};
+
+void project(const std::vector<Vec3>& w, const Vec3& axis, double& lo, double& hi) {
+  lo = INFINITY, hi = -INFINITY;
+  for (const Vec3& v : w) {
+    const double d = axis.dot(v);
+    lo = std::min(lo, d), hi = std::max(hi, d);
+  }
+}
+
+// Every cross product of an edge direction of a with one of b, oriented from a to b: the
+// separation of the projections of both bodies on it.
+EdgeQuery query_edges(const RigidBody& a, const Pose& pa, const std::vector<Vec3>& wa,
+                      const RigidBody& b, const Pose& pb, const std::vector<Vec3>& wb) {
+  EdgeQuery best;
+  const auto& da = a.edge_directions();
+  const auto& db = b.edge_directions();
+  for (std::size_t i = 0; i < da.size(); ++i) {
+    const Vec3 ea = pa.R * da[i];
+    for (std::size_t j = 0; j < db.size(); ++j) {
+      Vec3 axis = ea.cross(pb.R * db[j]);
+      const double length = axis.norm();
+      // Edges parallel within 1e-6 rad: their cross product is a face normal's business.
+      if (length < 1e-6) continue;
+      axis /= length;
+      if (axis.dot(pb.x - pa.x) < 0.0) axis = -axis;
+      double lo_a, hi_a, lo_b, hi_b;
+      project(wa, axis, lo_a, hi_a);
+      project(wb, axis, lo_b, hi_b);
+      const double sep = lo_b - hi_a;
+      if (sep > best.separation) best = {static_cast<int>(i), static_cast<int>(j), sep, axis};
+    }
+  }
+  return best;
+}
+
+double polyhedra_separation(const RigidBody& a, const Pose& pa, const RigidBody& b,
+                            const Pose& pb) {
+  const std::vector<Vec3> wa = world_vertices(a, pa), wb = world_vertices(b, pb);
+  const double fa = query_faces(a, pa, wa, wb).separation;
+  if (fa > 0.0) return std::max(fa, query_faces(b, pb, wb, wa).separation);
+  const double fb = query_faces(b, pb, wb, wa).separation;
+  return std::max({fa, fb, query_edges(a, pa, wa, b, pb, wb).separation});
+}
+
+struct ClipPoint {
+  Vec3 p;
+  std::uint32_t feature;
+};
+
+// Keeps the part of `poly` with s·p <= offset (Sutherland–Hodgman against one plane).
+void clip(std::vector<ClipPoint>& poly, const Vec3& s, double offset, std::uint32_t edge) {
+  std::vector<ClipPoint> out;
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const ClipPoint& p = poly[i];
+    const ClipPoint& q = poly[(i + 1) % n];
+    const double dp = s.dot(p.p) - offset, dq = s.dot(q.p) - offset;
+    if (dp <= 0.0) out.push_back(p);
+    if ((dp < 0.0 && dq > 0.0) || (dp > 0.0 && dq < 0.0))
+      out.push_back({p.p + (dp / (dp - dq)) * (q.p - p.p), 0x20000u | (edge << 8) | p.feature});
+  }
+  poly.swap(out);
+}
+
+// Reduces more than Manifold::kMaxPoints points to the ones extreme in 8 directions of the
+// reference plane (tangents t1, t2), which keeps their support polygon; deterministic.
+void reduce(std::vector<ManifoldPoint>& points, const Vec3& t1, const Vec3& t2) {
+  if (static_cast<int>(points.size()) <= Manifold::kMaxPoints) return;
+  std::vector<PlanePoint> plane(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    plane[i] = {points[i].on_b.dot(t1), points[i].on_b.dot(t2), static_cast<int>(i)};
+  std::vector<PlanePoint> hull(2 * plane.size() + 1);
+  const int corners = support_polygon(plane.data(), static_cast<int>(plane.size()), hull.data());
+  std::vector<int> keep;
+  if (corners <= Manifold::kMaxPoints) {
+    for (int c = 0; c < corners; ++c) keep.push_back(hull[c].index);
+  } else {
+    for (int d = 0; d < 8; ++d) {
+      const double angle = d * (kPi / 4.0);
+      const double cx = std::cos(angle), cz = std::sin(angle);
+      const PlanePoint* best = &hull[0];
+      for (int c = 0; c < corners; ++c)
+        if (hull[c].x * cx + hull[c].z * cz > best->x * cx + best->z * cz) best = &hull[c];
+      if (std::find(keep.begin(), keep.end(), best->index) == keep.end())
+        keep.push_back(best->index);
+    }
+  }
+  std::sort(keep.begin(), keep.end());
+  std::vector<ManifoldPoint> kept;
+  for (int i : keep) kept.push_back(points[i]);
+  points.swap(kept);
+}
+
+// The reference face `face` of body r against body i (world vertices wr, wi): the incident face
+// clipped by the reference face's sides; points within margin of the reference plane. The
+// normal of the result points from r to i.
+Manifold face_contact(const RigidBody& r, const Pose& pr, const std::vector<Vec3>& wr, int face,
+                      const RigidBody& in, const Pose& pi, const std::vector<Vec3>& wi,
+                      double margin) {
+  const HullFace& ref = r.faces()[face];
+  const Vec3 n = pr.R * ref.normal;
+  // The incident face: the one of `in` most opposed to the reference normal.
+  int incident = 0;
+  double most = INFINITY;
+  for (std::size_t f = 0; f < in.faces().size(); ++f) {
+    const double d = (pi.R * in.faces()[f].normal).dot(n);
+    if (d < most) most = d, incident = static_cast<int>(f);
+  }
+  std::vector<ClipPoint> poly;
+  for (int v : in.faces()[incident].vertices) poly.push_back({wi[v], static_cast<std::uint32_t>(v)});
+  const std::size_t k = ref.vertices.size();
+  for (std::size_t e = 0; e < k && !poly.empty(); ++e) {
+    const Vec3& a = wr[ref.vertices[e]];
+    const Vec3& b = wr[ref.vertices[(e + 1) % k]];
+    const Vec3 side = (b - a).cross(n);  // outward for a counter-clockwise face
+    const double length = side.norm();
+    if (!(length > 0.0)) continue;
+    clip(poly, side / length, side.dot(a) / length, static_cast<std::uint32_t>(e));
+  }
+  const double offset = n.dot(wr[ref.vertices[0]]);
+  std::vector<ManifoldPoint> points;
+  for (const ClipPoint& c : poly) {
+    const double sep = n.dot(c.p) - offset;
+    if (sep > margin) continue;
+    const std::uint32_t feature =
+        (static_cast<std::uint32_t>(face) << 24) | (static_cast<std::uint32_t>(incident) << 16) |
+        (c.feature & 0xffffu);
+    points.push_back({c.p - sep * n, c.p, sep, feature});
+  }
+  const Vec3 t1 = (wr[ref.vertices[1]] - wr[ref.vertices[0]]).normalized();
+  reduce(points, t1, n.cross(t1));
+  Manifold m;
+  m.normal = n;
+  for (const ManifoldPoint& p : points) m.points[m.count++] = p;
+  return m;
+}
+
+// The edge of body b along direction `dir` (world) that is most extreme along `axis`.
+void support_edge(const RigidBody& b, const std::vector<Vec3>& w, const Vec3& dir,
+                  const Vec3& axis, Vec3& p0, Vec3& p1) {
+  double best = -INFINITY;
+  for (const HullFace& f : b.faces())
+    for (std::size_t i = 0; i < f.vertices.size(); ++i) {
+      const Vec3& a = w[f.vertices[i]];
+      const Vec3& c = w[f.vertices[(i + 1) % f.vertices.size()]];
+      const Vec3 e = c - a;
+      if (std::abs(e.normalized().dot(dir)) < 1.0 - 1e-9) continue;
+      const double d = axis.dot(a + c);
+      if (d > best) best = d, p0 = a, p1 = c;
+    }
+}
+
+// Closest points of segments p0p1 and q0q1 (Ericson, Real-Time Collision Detection, 5.1.9).
+void closest_between_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1,
+                              Vec3& on_p, Vec3& on_q) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double c = d1.dot(r), b = d1.dot(d2);
+  const double denom = a * e - b * b;
+  double s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  double t = e > 0.0 ? (b * s + f) / e : 0.0;
+  if (t < 0.0) {
+    t = 0.0;
+    s = a > 0.0 ? std::clamp(-c / a, 0.0, 1.0) : 0.0;
+  } else if (t > 1.0) {
+    t = 1.0;
+    s = a > 0.0 ? std::clamp((b - c) / a, 0.0, 1.0) : 0.0;
+  }
+  on_p = p0 + s * d1;
+  on_q = q0 + t * d2;
+}
+
+Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
+                   double margin) {
+  Manifold none;
+  const std::vector<Vec3> wa = world_vertices(a, pa), wb = world_vertices(b, pb);
+  const FaceQuery fa = query_faces(a, pa, wa, wb);
+  if (fa.separation > margin) return none;
+  const FaceQuery fb = query_faces(b, pb, wb, wa);
+  if (fb.separation > margin) return none;
+  const EdgeQuery ee = query_edges(a, pa, wa, b, pb, wb);
+  if (ee.separation > margin) return none;
+  // Faces are preferred to edges, and a's face to b's, unless clearly worse (by 1e-3 of the
+  // smaller body's reach): a box resting face on face has edge axes as good as its face axis,
+  // and a face gives the whole support polygon where an edge gives one point.
+  const double tol = 1e-3 * std::min(a.bounding_radius(), b.bounding_radius());
+  const double face_best = std::max(fa.separation, fb.separation);
+  if (ee.edge_a >= 0 && ee.separation > face_best + tol) {
+    Vec3 a0, a1, b0, b1, on_a, on_b;
+    support_edge(a, wa, pa.R * a.edge_directions()[ee.edge_a], ee.axis, a0, a1);
+    support_edge(b, wb, pb.R * b.edge_directions()[ee.edge_b], -ee.axis, b0, b1);
+    closest_between_segments(a0, a1, b0, b1, on_a, on_b);
+    Manifold m;
+    m.normal = ee.axis;
+    m.count = 1;
+    m.points[0] = {on_a, on_b, ee.separation,
+                   0x40000000u | (static_cast<std::uint32_t>(ee.edge_a) << 8) |
+                       static_cast<std::uint32_t>(ee.edge_b)};
+    return m;
+  }
+  if (fb.separation > fa.separation + tol) return swapped(face_contact(b, pb, wb, fb.face, a, pa, wa, margin));
+  return face_contact(a, pa, wa, fa.face, b, pb, wb, margin);
+}
+
+}  // namespace
+
+double separation(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb) {
+  if (is_round(a) && is_round(b))
+    return (pb.x - pa.x).norm() - radius_of(a) - radius_of(b);
+  if (is_round(a)) return round_polyhedron_separation(a, pa, b, pb);
+  if (is_round(b)) return round_polyhedron_separation(b, pb, a, pa);
+  return polyhedra_separation(a, pa, b, pb);
+}
+
+Manifold collide(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
+                 double margin) {
+  if (is_round(a) && is_round(b)) return round_round(a, pa, b, pb, margin);
+  if (is_round(a)) return round_polyhedron(a, pa, b, pb, margin);
+  if (is_round(b)) return swapped(round_polyhedron(b, pb, a, pa, margin));
+  return polyhedra(a, pa, b, pb, margin);
+}
+
+double plane_separation(double height, const RigidBody& b, const Pose& pb) {
+  if (is_round(b)) return pb.x.y() - radius_of(b) - height;
+  double lowest = INFINITY;
+  for (const Vec3& v : b.vertices()) lowest = std::min(lowest, pb.x.y() + pb.R.row(1).dot(v));
+  return lowest - height;
+}
+
+Manifold collide_plane(double height, const RigidBody& b, const Pose& pb, double margin) {
+  Manifold m;
+  m.normal = Vec3::UnitY();
+  if (is_round(b)) {
+    const Vec3 low = pb.x - radius_of(b) * Vec3::UnitY();
+    const double sep = low.y() - height;
+    if (sep > margin) return m;
+    m.count = 1;
+    m.points[0] = {Vec3(low.x(), height, low.z()), low, sep, 0};
+    return m;
+  }
+  std::vector<ManifoldPoint> points;
+  for (std::size_t i = 0; i < b.vertices().size(); ++i) {
+    const Vec3 w = pb.x + pb.R * b.vertices()[i];
+    const double sep = w.y() - height;
+    if (sep <= margin)
+      points.push_back({Vec3(w.x(), height, w.z()), w, sep, static_cast<std::uint32_t>(i)});
+  }
+  reduce(points, Vec3::UnitX(), Vec3::UnitZ());
+  for (const ManifoldPoint& p : points) m.points[m.count++] = p;
+  return m;
+}
+
+}  // namespace tumble

@@ -1,0 +1,700 @@
+#include "island.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+
+#include "integrator_schemes.hpp"
+#include "lcp.hpp"
+
+namespace tumble {
+namespace {
+
+bool round_side(const RigidBody* b) {
+  return b && (b->shape() == ShapeKind::Sphere || b->shape() == ShapeKind::Particle);
+}
+
+// Where a force along the contact acts on one side, and how its point moves.
+struct SideGeometry {
+  int member = -1;  // local index, -1 for a static side
+  Vec3 lever = Vec3::Zero();  // force lever from the centre of mass
+  Vec3 point_lever = Vec3::Zero();  // lever of the constrained point (zero for a round side)
+};
+
+struct Frames {
+  std::vector<ContactFrame> frame;
+  std::vector<SideGeometry> a, b;
+  std::vector<bool> round_pair;
+};
+
+Frames frames_of(const IslandView& v, const std::vector<IslandContact>& contacts,
+                 const IslandState& s) {
+  Frames f;
+  const std::size_t n = contacts.size();
+  f.frame.resize(n);
+  f.a.resize(n);
+  f.b.resize(n);
+  f.round_pair.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const IslandContact& c = contacts[i];
+    const IslandPair& p = v.island->pairs[c.pair];
+    f.frame[i] = contact_frame(v, c, s);
+    const bool ra = round_side(v.side_body(p.a)), rb = round_side(v.side_body(p.b));
+    f.round_pair[i] = ra && rb;
+    if (p.a.kind == Side::Member) {
+      f.a[i].member = p.a.index;
+      f.a[i].lever = f.frame[i].ra;
+      f.a[i].point_lever = ra ? Vec3(Vec3::Zero()) : f.frame[i].ra;
+    }
+    f.b[i].member = p.b.index;
+    f.b[i].lever = f.frame[i].rb;
+    f.b[i].point_lever = rb ? Vec3(Vec3::Zero()) : f.frame[i].rb;
+  }
+  return f;
+}
+
+// Per member: inverse mass and world inverse inertia at s.
+struct MassInfo {
+  double inv_m;
+  Mat3 Iinv;
+};
+std::vector<MassInfo> masses(const IslandView& v, const IslandState& s) {
+  std::vector<MassInfo> m(s.size());
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const RigidBody& b = v.member(static_cast<int>(k));
+    m[k].inv_m = b.inverse_mass();
+    if (b.is_particle()) {
+      m[k].Iinv.setZero();
+    } else {
+      const Mat3 R = rotation_of(s[k], v.rotation);
+      m[k].Iinv = R * b.inverse_inertia_body().asDiagonal() * R.transpose();
+    }
+  }
+  return m;
+}
+
+// A_ij: the change of the normal (relative) velocity or acceleration at contact i per unit
+// impulse or force at contact j along dir_j (on b, and its opposite on a).
+Eigen::MatrixXd contact_matrix(const Frames& f, const std::vector<MassInfo>& m,
+                               const std::vector<Vec3>& dir) {
+  const int n = static_cast<int>(f.frame.size());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  for (int j = 0; j < n; ++j) {
+    // The velocity change of member k per unit impulse at j: (dv, dω).
+    for (int side = 0; side < 2; ++side) {
+      const SideGeometry& gj = side == 0 ? f.a[j] : f.b[j];
+      if (gj.member < 0) continue;
+      const double sign_j = side == 0 ? -1.0 : 1.0;
+      const MassInfo& mk = m[gj.member];
+      const Vec3 dv = sign_j * mk.inv_m * dir[j];
+      const Vec3 dw = sign_j * (mk.Iinv * gj.lever.cross(dir[j]));
+      for (int i = 0; i < n; ++i) {
+        for (int side_i = 0; side_i < 2; ++side_i) {
+          const SideGeometry& gi = side_i == 0 ? f.a[i] : f.b[i];
+          if (gi.member != gj.member) continue;
+          const double sign_i = side_i == 0 ? -1.0 : 1.0;
+          A(i, j) += sign_i * f.frame[i].n.dot(dv + dw.cross(gi.point_lever));
+        }
+      }
+    }
+  }
+  return A;
+}
+
+Vec3 side_velocity(const IslandView& v, const IslandState& s, const SideGeometry& g,
+                   const Vec3& lever) {
+  if (g.member < 0) return Vec3::Zero();
+  const RigidBody& b = v.member(g.member);
+  const Vec3 vel = s[g.member].P * b.inverse_mass();
+  if (b.is_particle()) return vel;
+  const Mat3 R = rotation_of(s[g.member], v.rotation);
+  const Vec3 omega = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * s[g.member].L;
+  return vel + omega.cross(lever);
+}
+
+// Relative velocity of the contact's surface points, b minus a.
+Vec3 relative_velocity(const IslandView& v, const IslandState& s, const Frames& f, int i) {
+  return side_velocity(v, s, f.b[i], f.b[i].lever) - side_velocity(v, s, f.a[i], f.a[i].lever);
+}
+
+void apply(IslandState& s, const Frames& f, int i, const Vec3& impulse) {
+  if (f.b[i].member >= 0) {
+    s[f.b[i].member].P += impulse;
+    s[f.b[i].member].L += f.b[i].lever.cross(impulse);
+  }
+  if (f.a[i].member >= 0) {
+    s[f.a[i].member].P -= impulse;
+    s[f.a[i].member].L -= f.a[i].lever.cross(impulse);
+  }
+}
+
+// The direction a sliding contact slips: its tangential relative velocity, or where that is
+// still below round-off of its start (sliding from rest), the direction it was found to go.
+Vec3 slip_unit(const IslandContact& c, const ContactFrame& f, const Vec3& dv) {
+  const Vec3 slip = dv - f.n * f.n.dot(dv);
+  const double speed = slip.norm();
+  if (speed > 1e-9 * std::max(dv.norm(), 1e-3) && speed > 0.0) return slip / speed;
+  return c.slip_direction;
+}
+
+// Two unit tangents of n.
+void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
+  t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+  t2 = n.cross(t1);
+}
+
+}  // namespace
+
+ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const IslandState& s) {
+  const IslandPair& p = v.island->pairs[c.pair];
+  ContactFrame f;
+  const RigidBody* A = v.side_body(p.a);
+  const RigidBody* B = v.side_body(p.b);
+  const Vec3 xb = s[p.b.index].x;
+  const Mat3 Rb = rotation_of(s[p.b.index], v.rotation);
+  Vec3 xa = Vec3::Zero();
+  Mat3 Ra = Mat3::Identity();
+  if (p.a.kind == Side::Member) {
+    xa = s[p.a.index].x;
+    Ra = rotation_of(s[p.a.index], v.rotation);
+  } else if (p.a.kind == Side::Fixed) {
+    xa = A->state.x;
+    Ra = A->state.R;
+  }
+  if (round_side(A) && round_side(B)) {
+    const Vec3 d = xb - xa;
+    f.n = d.norm() > 0.0 ? Vec3(d.normalized()) : Vec3(Vec3::UnitY());
+  } else if (c.normal_on >= 0) {
+    f.n = rotation_of(s[c.normal_on], v.rotation) * c.normal_local;
+  } else {
+    f.n = c.normal_local;
+  }
+  // Side a.
+  if (round_side(A)) {
+    f.ra = c.radius_a * f.n;
+    f.pa = xa + f.ra;
+    if (p.a.kind != Side::Member) f.ra.setZero();
+  } else if (p.a.kind == Side::Member) {
+    f.ra = Ra * c.anchor_a;
+    f.pa = xa + f.ra;
+  } else if (p.a.kind == Side::Fixed) {
+    f.pa = xa + Ra * c.anchor_a;
+    f.ra.setZero();
+  } else {
+    f.pa = c.anchor_a;
+    f.ra.setZero();
+  }
+  // Side b (always a member).
+  f.rb = round_side(B) ? Vec3(-c.radius_b * f.n) : Vec3(Rb * c.anchor_b);
+  f.pb = xb + f.rb;
+  return f;
+}
+
+std::vector<IslandDynamics::Free> IslandDynamics::free_motion(const IslandState& s) const {
+  std::vector<Free> k(s.size());
+  for (std::size_t m = 0; m < s.size(); ++m) {
+    const RigidBody& b = v_.member(static_cast<int>(m));
+    Free& f = k[m];
+    f.v = s[m].P * b.inverse_mass();
+    f.F = b.mass() * v_.forces->gravity;
+    if (v_.forces->linear_drag > 0.0) f.F -= v_.forces->linear_drag * f.v;
+    f.tau.setZero();
+    if (b.is_particle()) {
+      f.R.setIdentity();
+      f.Iinv.setZero();
+      f.omega.setZero();
+      f.alpha.setZero();
+    } else {
+      f.R = rotation_of(s[m], v_.rotation);
+      f.Iinv = f.R * b.inverse_inertia_body().asDiagonal() * f.R.transpose();
+      f.omega = f.Iinv * s[m].L;
+      if (v_.forces->angular_drag > 0.0) f.tau -= v_.forces->angular_drag * f.omega;
+      // α = I⁻¹ (τ − ω × L): the derivative of ω = I⁻¹ L with I⁻¹ rotating along.
+      f.alpha = f.Iinv * (f.tau - f.omega.cross(s[m].L));
+    }
+    f.a = f.F * b.inverse_mass();
+  }
+  return k;
+}
+
+Eigen::VectorXd IslandDynamics::solve(const IslandState& s, const std::vector<Free>& k) const {
+  const std::vector<IslandContact>& held = *held_;
+  const int n = static_cast<int>(held.size());
+  const Frames f = frames_of(v_, held, s);
+  const std::vector<MassInfo> m = masses(v_, s);
+  // The force direction of each contact: the normal, and against the slip for a sliding one
+  // (Coulomb kinetic friction proportional to the normal force: Baraff's dynamic friction,
+  // which makes A unsymmetric).
+  std::vector<Vec3> dir(static_cast<std::size_t>(n));
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) {
+    const ContactFrame& c = f.frame[i];
+    dir[i] = c.n;
+    const IslandPair& p = v_.island->pairs[held[i].pair];
+    const Vec3 dv = relative_velocity(v_, s, f, i);
+    if (held[i].sliding && p.friction > 0.0) dir[i] -= p.friction * slip_unit(held[i], c, dv);
+    // Normal acceleration without contact forces: b = n·(a_pb − a_pa) + 2 ṅ·(v_pb − v_pa).
+    auto point_acc = [&](const SideGeometry& g) -> Vec3 {
+      if (g.member < 0) return Vec3::Zero();
+      const Free& q = k[g.member];
+      return q.a + q.alpha.cross(g.point_lever) + q.omega.cross(q.omega.cross(g.point_lever));
+    };
+    auto point_vel = [&](const SideGeometry& g) -> Vec3 {
+      if (g.member < 0) return Vec3::Zero();
+      const Free& q = k[g.member];
+      return q.v + q.omega.cross(g.point_lever);
+    };
+    const Vec3 dvel = point_vel(f.b[i]) - point_vel(f.a[i]);
+    double bi = c.n.dot(point_acc(f.b[i]) - point_acc(f.a[i]));
+    if (f.round_pair[i]) {
+      // Two round sides: the separation is |x_b − x_a| − r_a − r_b, whose second derivative
+      // adds the speed across the line of centres squared over its length.
+      const double L = (c.pb - c.pa).norm() + c.ra.norm() + c.rb.norm();
+      const Vec3 across = dvel - c.n * c.n.dot(dvel);
+      if (L > 0.0) bi += across.squaredNorm() / L;
+    } else if (held[i].normal_on >= 0) {
+      const Vec3 ndot = k[held[i].normal_on].omega.cross(c.n);
+      bi += 2.0 * ndot.dot(dvel);
+    }
+    b(i) = bi;
+  }
+  const Eigen::MatrixXd A = contact_matrix(f, m, dir);
+  Eigen::VectorXd force;
+  std::vector<char> local;
+  std::vector<char>& active = active_ ? *active_ : local;
+  if (!solve_lcp_pivoting(A, b, force, active) && failed_) *failed_ = true;
+  return force;
+}
+
+Eigen::VectorXd IslandDynamics::contact_forces(const IslandState& s) const {
+  if (!held_ || held_->empty()) return {};
+  return solve(s, free_motion(s));
+}
+
+std::vector<Rate> IslandDynamics::operator()(const IslandState& s) const {
+  if (evaluations_) *evaluations_ += static_cast<long>(s.size());
+  std::vector<Free> k = free_motion(s);
+  if (held_ && !held_->empty()) {
+    const Eigen::VectorXd force = solve(s, k);
+    const Frames f = frames_of(v_, *held_, s);
+    for (std::size_t i = 0; i < held_->size(); ++i) {
+      const ContactFrame& c = f.frame[i];
+      const IslandPair& p = v_.island->pairs[(*held_)[i].pair];
+      Vec3 dir = c.n;
+      if ((*held_)[i].sliding && p.friction > 0.0)
+        dir -= p.friction *
+               slip_unit((*held_)[i], c, relative_velocity(v_, s, f, static_cast<int>(i)));
+      const Vec3 F = force(static_cast<Eigen::Index>(i)) * dir;
+      if (f.b[i].member >= 0) {
+        k[f.b[i].member].F += F;
+        k[f.b[i].member].tau += f.b[i].lever.cross(F);
+      }
+      if (f.a[i].member >= 0) {
+        k[f.a[i].member].F -= F;
+        k[f.a[i].member].tau -= f.a[i].lever.cross(F);
+      }
+    }
+  }
+  std::vector<Rate> d(s.size());
+  for (std::size_t m = 0; m < s.size(); ++m) {
+    const RigidBody& b = v_.member(static_cast<int>(m));
+    d[m].v = k[m].v;
+    d[m].F = k[m].F;
+    d[m].tau = k[m].tau;
+    if (b.is_particle()) continue;
+    if (v_.rotation == RotationRep::Quaternion) {
+      // q̇ = ½ (0, ω) ⊗ q, written out in (w, x, y, z) order.
+      const Vec3 qv = s[m].q.vec();
+      const double qw = s[m].q.w();
+      d[m].qdot(0) = -0.5 * k[m].omega.dot(qv);
+      d[m].qdot.tail<3>() = 0.5 * (qw * k[m].omega + k[m].omega.cross(qv));
+    } else {
+      d[m].Rdot = star(k[m].omega) * s[m].R;
+    }
+  }
+  return d;
+}
+
+namespace {
+
+// An island as an integration system (integrator_schemes.hpp): every member advanced as a
+// single body is, the error the largest of the members'.
+struct IslandSystem {
+  using State = IslandState;
+  using Rates = std::vector<Rate>;
+  struct BodyError {
+    Vec3 dx = Vec3::Zero(), dP = Vec3::Zero(), dL = Vec3::Zero();
+    Vec4 dq = Vec4::Zero();
+    Mat3 dR = Mat3::Zero();
+  };
+  using ErrorSum = std::vector<BodyError>;
+  const IslandDynamics& f;
+  const std::vector<Stepping>& per_body;
+
+  bool particle(std::size_t m) const { return f.view().member(static_cast<int>(m)).is_particle(); }
+  RotationRep rep() const { return f.view().rotation; }
+  Rates eval(const State& s) const { return f(s); }
+  State add(const State& s, const Rates& d, double h) const {
+    State out = s;
+    for (std::size_t m = 0; m < s.size(); ++m) {
+      out[m].x += h * d[m].v;
+      out[m].P += h * d[m].F;
+      if (particle(m)) continue;
+      out[m].L += h * d[m].tau;
+      if (rep() == RotationRep::Quaternion) {
+        out[m].q.w() += h * d[m].qdot(0);
+        out[m].q.vec() += h * d[m].qdot.tail<3>();
+      } else {
+        out[m].R += h * d[m].Rdot;
+      }
+    }
+    return out;
+  }
+  State kick(const State& s, const Rates& d, double h) const {
+    State out = s;
+    for (std::size_t m = 0; m < s.size(); ++m) {
+      out[m].P += h * d[m].F;
+      if (!particle(m)) out[m].L += h * d[m].tau;
+    }
+    return out;
+  }
+  State drift(const State& s, const Rates& d, double h) const {
+    State out = s;
+    for (std::size_t m = 0; m < s.size(); ++m) {
+      out[m].x += h * d[m].v;
+      if (particle(m)) continue;
+      if (rep() == RotationRep::Quaternion) {
+        out[m].q.w() += h * d[m].qdot(0);
+        out[m].q.vec() += h * d[m].qdot.tail<3>();
+      } else {
+        out[m].R += h * d[m].Rdot;
+      }
+    }
+    return out;
+  }
+  ErrorSum error_sum() const { return ErrorSum(per_body.size()); }
+  void accumulate_error(ErrorSum& e, const Rates& k, double w) const {
+    for (std::size_t m = 0; m < e.size(); ++m) {
+      e[m].dx += w * k[m].v;
+      e[m].dP += w * k[m].F;
+      if (particle(m)) continue;
+      e[m].dL += w * k[m].tau;
+      if (rep() == RotationRep::Quaternion)
+        e[m].dq += w * k[m].qdot;
+      else
+        e[m].dR += w * k[m].Rdot;
+    }
+  }
+  double scaled_error(const State& s, const ErrorSum& e, const Stepping&) const {
+    double worst = 0.0;
+    for (std::size_t m = 0; m < e.size(); ++m)
+      worst = std::max(worst, body_scaled_error(f.view().member(static_cast<int>(m)), rep(), s[m],
+                                                e[m].dx, e[m].dP, e[m].dL, e[m].dq, e[m].dR,
+                                                per_body[m]));
+    return worst;
+  }
+  void finish(State& s, StepInfo& info) const {
+    for (std::size_t m = 0; m < s.size(); ++m) {
+      if (particle(m)) continue;
+      info.orientation_drift = std::max(info.orientation_drift, orientation_drift(s[m], rep()));
+      normalize_orientation(s[m], rep());
+    }
+  }
+};
+
+}  // namespace
+
+IslandState integrate_island(const IslandDynamics& f, const IslandState& s, double h,
+                             const Stepping& how, const std::vector<Stepping>& per_body,
+                             StepInfo* info) {
+  return schemes::step(IslandSystem{f, per_body}, s, h, how, info);
+}
+
+double normal_speed(const IslandView& v, const IslandContact& c, const IslandState& s) {
+  const std::vector<IslandContact> one{c};
+  const Frames f = frames_of(v, one, s);
+  return f.frame[0].n.dot(relative_velocity(v, s, f, 0));
+}
+
+double island_kinetic_energy(const IslandView& v, const IslandState& s) {
+  double e = 0.0;
+  for (std::size_t m = 0; m < s.size(); ++m) {
+    const RigidBody& b = v.member(static_cast<int>(m));
+    e += 0.5 * s[m].P.squaredNorm() * b.inverse_mass();
+    if (b.is_particle()) continue;
+    const Mat3 R = rotation_of(s[m], v.rotation);
+    const Vec3 omega = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * s[m].L;
+    e += 0.5 * omega.dot(s[m].L);
+  }
+  return e;
+}
+
+double resolve_island_impacts(const IslandView& v, const std::vector<IslandContact>& contacts,
+                              IslandState& s, double rest_speed, bool inelastic,
+                              std::vector<double>& impulses) {
+  const int n = static_cast<int>(contacts.size());
+  impulses.assign(static_cast<std::size_t>(n), 0.0);
+  if (n == 0) return 0.0;
+  const double e_start = island_kinetic_energy(v, s);
+  // Impulses change momenta, not poses: the frames and the matrix hold for every pass.
+  const Frames f = frames_of(v, contacts, s);
+  const std::vector<MassInfo> m = masses(v, s);
+  std::vector<Vec3> normals(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) normals[i] = f.frame[i].n;
+  const Eigen::MatrixXd A = contact_matrix(f, m, normals);
+  auto speeds = [&] {
+    Eigen::VectorXd vn(n);
+    for (int i = 0; i < n; ++i) vn(i) = f.frame[i].n.dot(relative_velocity(v, s, f, i));
+    return vn;
+  };
+  Eigen::VectorXd vn = speeds();
+  const double fastest = std::max(0.0, -vn.minCoeff());
+  if (fastest == 0.0) return 0.0;
+  // Approach slower than 1e-9 of the impact's is round-off of an exchange already made.
+  const double eps = 1e-9 * fastest;
+  // Only the pairs that approach take part in a pass (all their touching points together, as
+  // a face lands on the floor at once), and passes repeat until none does: an impact then
+  // travels along a chain of touching bodies (Newton's cradle) instead of being shared out at
+  // once by pairs that were not approaching.
+  const int max_passes = 4 * n + 16;
+  for (int pass = 0; pass < max_passes; ++pass) {
+    std::vector<char> approaching_pair(v.island->pairs.size(), 0);
+    for (int i = 0; i < n; ++i)
+      if (vn(i) < -eps) approaching_pair[contacts[i].pair] = 1;
+    std::vector<int> set;
+    for (int i = 0; i < n; ++i)
+      if (approaching_pair[contacts[i].pair]) set.push_back(i);
+    if (set.empty()) break;
+    const int k = static_cast<int>(set.size());
+    Eigen::MatrixXd As(k, k);
+    for (int r = 0; r < k; ++r)
+      for (int c = 0; c < k; ++c) As(r, c) = A(set[r], set[c]);
+    const double e_before = island_kinetic_energy(v, s);
+    const IslandState before = s;
+    auto solve = [&](bool elastic) {
+      Eigen::VectorXd rhs(k);
+      for (int r = 0; r < k; ++r) {
+        const int i = set[r];
+        const double e = v.island->pairs[contacts[i].pair].restitution;
+        const bool bounces = elastic && vn(i) < -rest_speed;
+        rhs(r) = bounces ? (1.0 + e) * vn(i) : vn(i);
+      }
+      Eigen::VectorXd j;
+      std::vector<char> active;
+      solve_lcp_pivoting(As, rhs, j, active);
+      for (int r = 0; r < k; ++r) {
+        impulses[set[r]] += j(r);
+        apply(s, f, set[r], j(r) * f.frame[set[r]].n);
+      }
+      return j;
+    };
+    const std::vector<double> saved = impulses;
+    solve(!inelastic);
+    // Simultaneous Newton restitution can return more energy than came in; the inelastic
+    // solution is a projection in the kinetic metric and never does.
+    if (island_kinetic_energy(v, s) > e_before * (1.0 + 1e-12) + 1e-300) {
+      s = before;
+      impulses = saved;
+      solve(false);
+    }
+    vn = speeds();
+  }
+  bool friction = false;
+  for (int i = 0; i < n; ++i) friction |= v.island->pairs[contacts[i].pair].friction > 0.0;
+  if (friction) {
+    apply_island_friction(v, contacts, impulses, s);
+    // A tangential impulse can turn a body so that a point approaches again: a last
+    // inelastic pass stops every approach (a projection: it only dissipates).
+    vn = speeds();
+    std::vector<char> approaching_pair(v.island->pairs.size(), 0);
+    for (int i = 0; i < n; ++i)
+      if (vn(i) < 0.0) approaching_pair[contacts[i].pair] = 1;
+    std::vector<int> set;
+    for (int i = 0; i < n; ++i)
+      if (approaching_pair[contacts[i].pair]) set.push_back(i);
+    if (!set.empty()) {
+      const int k = static_cast<int>(set.size());
+      Eigen::MatrixXd As(k, k);
+      Eigen::VectorXd rhs(k);
+      for (int r = 0; r < k; ++r) {
+        rhs(r) = vn(set[r]);
+        for (int c = 0; c < k; ++c) As(r, c) = A(set[r], set[c]);
+      }
+      Eigen::VectorXd j;
+      std::vector<char> active;
+      solve_lcp_pivoting(As, rhs, j, active);
+      for (int r = 0; r < k; ++r) {
+        impulses[set[r]] += j(r);
+        apply(s, f, set[r], j(r) * f.frame[set[r]].n);
+      }
+    }
+  }
+  return island_kinetic_energy(v, s) - e_start;
+}
+
+bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>& contacts,
+                           const std::vector<double>& normal_impulse, IslandState& s) {
+  const int n = static_cast<int>(contacts.size());
+  if (n == 0) return true;
+  const Frames f = frames_of(v, contacts, s);
+  const std::vector<MassInfo> m = masses(v, s);
+  std::vector<Vec3> t(static_cast<std::size_t>(2 * n));
+  std::vector<double> mu(static_cast<std::size_t>(n));
+  Eigen::VectorXd u(2 * n);
+  for (int i = 0; i < n; ++i) {
+    tangents(f.frame[i].n, t[2 * i], t[2 * i + 1]);
+    mu[i] = v.island->pairs[contacts[i].pair].friction;
+    const Vec3 dv = relative_velocity(v, s, f, i);
+    u(2 * i) = mu[i] > 0.0 ? dv.dot(t[2 * i]) : 0.0;
+    u(2 * i + 1) = mu[i] > 0.0 ? dv.dot(t[2 * i + 1]) : 0.0;
+  }
+  if (u.cwiseAbs().maxCoeff() == 0.0) return true;
+  // K maps tangential impulses to changes of the tangential slips (rows: tangents of every
+  // contact; the frictionless ones have rows and columns too, with zero impulse).
+  Frames f2 = f;
+  f2.frame.resize(static_cast<std::size_t>(2 * n));
+  f2.a.resize(static_cast<std::size_t>(2 * n));
+  f2.b.resize(static_cast<std::size_t>(2 * n));
+  for (int i = 0; i < n; ++i)
+    for (int a = 0; a < 2; ++a) {
+      f2.frame[2 * i + a] = f.frame[i];
+      f2.frame[2 * i + a].n = t[2 * i + a];
+      f2.a[2 * i + a] = f.a[i];
+      f2.b[2 * i + a] = f.b[i];
+      // The slip is of the surface points: the force lever, also for round sides.
+      f2.a[2 * i + a].point_lever = f.a[i].lever;
+      f2.b[2 * i + a].point_lever = f.b[i].lever;
+    }
+  Eigen::MatrixXd K = contact_matrix(f2, m, t);
+  for (int i = 0; i < n; ++i)
+    if (mu[i] == 0.0)
+      for (int a = 0; a < 2; ++a) {
+        K.row(2 * i + a).setZero();
+        K.col(2 * i + a).setZero();
+        K(2 * i + a, 2 * i + a) = 1.0;
+      }
+  Eigen::VectorXd imp = -Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(K).solve(u);
+  bool sticks = true;
+  for (int i = 0; i < n; ++i)
+    if (imp.segment<2>(2 * i).norm() > mu[i] * normal_impulse[i] * (1.0 + 1e-9)) sticks = false;
+  if (!sticks) {
+    for (int i = 0; i < n; ++i) {
+      const double slip = u.segment<2>(2 * i).norm();
+      imp.segment<2>(2 * i) = slip > 0.0 ? Eigen::Vector2d(-mu[i] * normal_impulse[i] *
+                                                           u.segment<2>(2 * i) / slip)
+                                         : Eigen::Vector2d::Zero();
+    }
+    // Kinetic energy along σ·imp is KE0 + σ (u·imp) + ½ σ² impᵀK imp: the σ in [0, 1] that
+    // dissipates most, so sliding friction stops a slip but never reverses it.
+    const double slope = u.dot(imp), curvature = imp.dot(K * imp);
+    if (slope >= 0.0) return false;
+    imp *= curvature > 0.0 ? std::min(1.0, -slope / curvature) : 1.0;
+  }
+  for (int i = 0; i < n; ++i)
+    apply(s, f, i, imp(2 * i) * t[2 * i] + imp(2 * i + 1) * t[2 * i + 1]);
+  return sticks;
+}
+
+void restore_normal_speeds(const IslandView& v, const std::vector<IslandContact>& held,
+                           const std::vector<double>& normal_impulse, IslandState& s) {
+  const int n = static_cast<int>(held.size());
+  if (n == 0) return;
+  const Frames f = frames_of(v, held, s);
+  const std::vector<MassInfo> m = masses(v, s);
+  std::vector<Vec3> normals(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) normals[i] = f.frame[i].n;
+  const Eigen::MatrixXd A = contact_matrix(f, m, normals);
+  Eigen::VectorXd vn(n);
+  for (int i = 0; i < n; ++i) vn(i) = f.frame[i].n.dot(relative_velocity(v, s, f, i));
+  const Eigen::VectorXd d = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).solve(-vn);
+  bool feasible = (A * d + vn).norm() <= 1e-9 * std::max(vn.norm(), 1e-300);
+  for (int i = 0; i < n && feasible; ++i)
+    feasible = normal_impulse[i] + d(i) >= -1e-12 * std::max(normal_impulse[i], 1e-300);
+  if (feasible) {
+    for (int i = 0; i < n; ++i) apply(s, f, i, d(i) * f.frame[i].n);
+    return;
+  }
+  std::vector<double> unused;
+  resolve_island_impacts(v, held, s, INFINITY, true, unused);
+}
+
+bool island_in_equilibrium(const IslandView& v, const std::vector<IslandContact>& contacts,
+                           const IslandState& s) {
+  const int n = static_cast<int>(contacts.size());
+  const int members = static_cast<int>(s.size());
+  if (n == 0) return false;
+  const Frames f = frames_of(v, contacts, s);
+  // Each contact force as a non-negative combination of directions: the normal alone, or with
+  // friction the 8 edges n + mu (cos k45° t1 + sin k45° t2) of the pyramid inscribed in its
+  // cone (it holds all but 8 % of the cone, cos 22.5°): conservative, never a force outside.
+  std::vector<Vec3> dir;
+  std::vector<int> owner;
+  for (int i = 0; i < n; ++i) {
+    const double mu = v.island->pairs[contacts[i].pair].friction;
+    if (mu <= 0.0) {
+      dir.push_back(f.frame[i].n), owner.push_back(i);
+      continue;
+    }
+    Vec3 t1, t2;
+    tangents(f.frame[i].n, t1, t2);
+    for (int k = 0; k < 8; ++k) {
+      const double a = k * (kPi / 4.0);
+      dir.push_back(f.frame[i].n + mu * (std::cos(a) * t1 + std::sin(a) * t2));
+      owner.push_back(i);
+    }
+  }
+  const int u = static_cast<int>(dir.size());
+  // Rows: every member's force and torque balance, J β = −W.
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6 * members, u);
+  Eigen::VectorXd W = Eigen::VectorXd::Zero(6 * members);
+  for (int k = 0; k < members; ++k) W.segment<3>(6 * k) = v.member(k).mass() * v.forces->gravity;
+  for (int c = 0; c < u; ++c) {
+    const int i = owner[c];
+    for (int side = 0; side < 2; ++side) {
+      const SideGeometry& g = side == 0 ? f.a[i] : f.b[i];
+      if (g.member < 0) continue;
+      const double sign = side == 0 ? -1.0 : 1.0;
+      J.block<3, 1>(6 * g.member, c) += sign * dir[c];
+      if (!v.member(g.member).is_particle())
+        J.block<3, 1>(6 * g.member + 3, c) += sign * g.lever.cross(dir[c]);
+    }
+  }
+  // Non-negative least squares (Lawson & Hanson, "Solving Least Squares Problems", ch. 23):
+  // β >= 0 minimising |J β + W|. Balanced when the residual is round-off (1e-9 of the weights).
+  const Eigen::VectorXd b = -W;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(u);
+  std::vector<char> in_p(static_cast<std::size_t>(u), 0);
+  const double tol = 1e-12 * std::max(J.cwiseAbs().maxCoeff(), 1e-300) * W.norm();
+  for (int outer = 0; outer < 3 * u + 10; ++outer) {
+    const Eigen::VectorXd w = J.transpose() * (b - J * x);
+    int j = -1;
+    for (int c = 0; c < u; ++c)
+      if (!in_p[c] && w(c) > tol && (j < 0 || w(c) > w(j))) j = c;
+    if (j < 0) break;
+    in_p[j] = 1;
+    for (int inner = 0; inner < 3 * u + 10; ++inner) {
+      std::vector<int> set;
+      for (int c = 0; c < u; ++c)
+        if (in_p[c]) set.push_back(c);
+      Eigen::MatrixXd Jp(J.rows(), static_cast<Eigen::Index>(set.size()));
+      for (std::size_t k = 0; k < set.size(); ++k) Jp.col(static_cast<Eigen::Index>(k)) = J.col(set[k]);
+      const Eigen::VectorXd zp = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jp).solve(b);
+      Eigen::VectorXd z = Eigen::VectorXd::Zero(u);
+      for (std::size_t k = 0; k < set.size(); ++k) z(set[k]) = zp(static_cast<Eigen::Index>(k));
+      bool positive = true;
+      for (int c : set) positive &= z(c) > 0.0;
+      if (positive) {
+        x = z;
+        break;
+      }
+      double alpha = 1.0;
+      for (int c : set)
+        if (z(c) <= 0.0) alpha = std::min(alpha, x(c) / (x(c) - z(c)));
+      x += alpha * (z - x);
+      for (int c : set)
+        if (x(c) <= 1e-15 * std::max(x.cwiseAbs().maxCoeff(), 1e-300)) in_p[c] = 0, x(c) = 0.0;
+    }
+  }
+  return (J * x + W).norm() <= 1e-9 * W.norm();}
+
+}  // namespace tumble

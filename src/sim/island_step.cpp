@@ -1,0 +1,624 @@
+// The step of an island of bodies that meet: today's single-body step (World::advance_body)
+// generalised to several bodies, fixed bodies and the floor as shapes of their own.
+//
+// A step of an island: resting contacts (touching, slow) get inelastic impulses if they still
+// approach, then contact forces inside every derivative evaluation (one LCP over the whole
+// island); the island is integrated over what is left of the step; the first pair to cross
+// (conservative advancement brackets it, regula falsi locates it) ends the stretch there, its
+// impacts are resolved over every touching contact of the island, and the step goes on.
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "collide.hpp"
+#include "island.hpp"
+#include "tumble/world.hpp"
+
+namespace tumble {
+namespace {
+
+using Tol = ContactTolerances;
+
+std::string fmt(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+struct Bounds {
+  Vec3 lo, hi;
+  bool overlaps(const Bounds& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+
+// Deterministic union–find: the root of a set is its smallest index.
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+void join(std::vector<int>& parent, int a, int b) {
+  a = find_root(parent, a), b = find_root(parent, b);
+  if (a != b) parent[std::max(a, b)] = std::min(a, b);
+}
+
+// The pose of one side of a pair at an island state.
+Pose side_pose(const IslandView& v, const Side& s, const IslandState& st) {
+  if (s.kind == Side::Member) return pose_of(st[s.index]);
+  if (s.kind == Side::Fixed) return pose_of((*v.bodies)[s.index].state);
+  return {};
+}
+
+// Mid-step states carry unnormalised quaternions: collision geometry wants a rotation.
+IslandState normalized(const IslandState& s, RotationRep rep) {
+  IslandState out = s;
+  for (BodyState& b : out) {
+    if (rep == RotationRep::Quaternion) b.R = b.q.normalized().toRotationMatrix();
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Island> World::find_islands(double h) {
+  const std::size_t n = bodies_.size();
+  const double g = def_.gravity.norm();
+  // An impact inside the step can set a body still at its start moving: at most about twice
+  // the fastest point's speed in the world (a light body struck by a heavy one). Every moving
+  // body's bounds cover that reach, so a chain of bodies struck within one step is one island.
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const RigidBody& b = bodies_[i];
+    if (b.is_fixed() || b.at_rest) continue;
+    fastest = std::max(fastest, b.velocity().norm() + b.angular_velocity().norm() * b.bounding_radius());
+  }
+  std::vector<Bounds> bounds(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const RigidBody& b = bodies_[i];
+    const double r = b.bounding_radius() + tolerances_[i].touch_m;
+    Vec3 from = b.state.x, to = b.state.x;
+    double grow = r;
+    if (!b.is_fixed() && !b.at_rest) {
+      // Where free flight takes the centre over h, grown by what forces other than gravity
+      // (contacts, drag) could add within the step: half the speed again, and g h² — generous,
+      // so no pair that meets within the step is missed by the broad phase.
+      const Vec3 v = b.velocity();
+      to = from + h * v + (0.5 * h * h) * def_.gravity;
+      grow += 0.5 * v.norm() * h + g * h * h + 2.0 * fastest * h;
+    }
+    bounds[i] = {from.cwiseMin(to) - Vec3::Constant(grow), from.cwiseMax(to) + Vec3::Constant(grow)};
+  }
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<std::pair<int, int>> candidates;  // (i, j), i < j, bounds overlapping
+  // A sleeping body whose bounds an awake one reaches is woken (and its touching neighbours
+  // with it, pass after pass).
+  for (bool woke = true; woke;) {
+    woke = false;
+    candidates.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        RigidBody &a = bodies_[i], &b = bodies_[j];
+        const bool a_moves = !a.is_fixed() && !a.at_rest, b_moves = !b.is_fixed() && !b.at_rest;
+        if (!a_moves && !b_moves) continue;
+        if (!bounds[i].overlaps(bounds[j])) continue;
+        if (!pair_collides(static_cast<int>(i), static_cast<int>(j))) continue;
+        candidates.emplace_back(static_cast<int>(i), static_cast<int>(j));
+        for (RigidBody* x : {&a, &b})
+          if (x->at_rest && !x->is_fixed()) x->at_rest = false, woke = true;
+      }
+  }
+  for (const auto& [i, j] : candidates)
+    if (!bodies_[i].is_fixed() && !bodies_[j].is_fixed()) join(parent, i, j);
+  // Islands in the order of their smallest member; members ascending.
+  std::vector<Island> islands;
+  std::vector<int> island_of(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const RigidBody& b = bodies_[i];
+    if (b.is_fixed() || b.at_rest) continue;
+    const int root = find_root(parent, static_cast<int>(i));
+    if (island_of[root] < 0) {
+      island_of[root] = static_cast<int>(islands.size());
+      islands.emplace_back();
+    }
+    islands[island_of[root]].members.push_back(static_cast<int>(i));
+  }
+  auto local = [&](const Island& isl, int body) {
+    return static_cast<int>(std::lower_bound(isl.members.begin(), isl.members.end(), body) -
+                            isl.members.begin());
+  };
+  for (const auto& [i, j] : candidates) {
+    const bool fi = bodies_[i].is_fixed(), fj = bodies_[j].is_fixed();
+    const int moving = fi ? j : i;
+    Island& isl = islands[island_of[find_root(parent, moving)]];
+    IslandPair p;
+    const auto [e, mu] = pair_material(i, j);
+    p.restitution = e, p.friction = mu;
+    if (fi || fj) {
+      const int still = fi ? i : j;
+      p.a = {Side::Fixed, still};
+      p.b = {Side::Member, local(isl, moving)};
+      p.body_a = still, p.body_b = moving;
+    } else {
+      p.a = {Side::Member, local(isl, i)};
+      p.b = {Side::Member, local(isl, j)};
+      p.body_a = i, p.body_b = j;
+    }
+    isl.pairs.push_back(p);
+  }
+  for (Island& isl : islands) {
+    if (!def_.floor) continue;
+    for (std::size_t k = 0; k < isl.members.size(); ++k) {
+      const int body = isl.members[k];
+      if (!pair_collides(kFloorBody, body)) continue;
+      IslandPair p;
+      const auto [e, mu] = pair_material(kFloorBody, body);
+      p.restitution = e, p.friction = mu;
+      p.a = {Side::Floor, 0};
+      p.b = {Side::Member, static_cast<int>(k)};
+      p.body_a = kFloorBody, p.body_b = body;
+      isl.pairs.push_back(p);
+    }
+  }
+  return islands;
+}
+
+void World::advance_all(double h) {
+  if (!meets_bodies_) {
+    for (std::size_t i = 0; i < bodies_.size(); ++i) advance_body(i, h);
+    return;
+  }
+  for (const Island& island : find_islands(h)) {
+    // A body alone, meeting at most the floor: the single-body step, exactly as before.
+    const bool alone = island.members.size() == 1 &&
+                       std::all_of(island.pairs.begin(), island.pairs.end(),
+                                   [](const IslandPair& p) { return p.a.kind == Side::Floor; });
+    if (alone)
+      advance_body(static_cast<std::size_t>(island.members[0]), h);
+    else
+      advance_island(island, h);
+  }
+}
+
+void World::advance_island(const Island& island, double h) {
+  const ForceModel forces{def_.gravity, def_.linear_drag, def_.angular_drag,
+                          def_.general_contact_only};
+  IslandView view{&bodies_, &island, def_.rotation, &forces};
+  const int members = static_cast<int>(island.members.size());
+  IslandState state(static_cast<std::size_t>(members));
+  for (int k = 0; k < members; ++k) state[k] = bodies_[island.members[k]].state;
+
+  // Tolerances of a pair: the finer of its two bodies' (a fixed body or the floor: the moving
+  // one's), so a small body meeting a large one keeps its own precision.
+  auto tol_of = [&](const IslandPair& p) {
+    Tol t = tolerances_[p.body_b];
+    if (p.body_a >= 0 && !bodies_[p.body_a].is_fixed()) {
+      const Tol& o = tolerances_[p.body_a];
+      t.toi_time_s = std::min(t.toi_time_s, o.toi_time_s);
+      t.touch_m = std::min(t.touch_m, o.touch_m);
+      t.rest_speed_mps = std::max(t.rest_speed_mps, o.rest_speed_mps);
+      t.hold_speed_mps = std::min(t.hold_speed_mps, o.hold_speed_mps);
+      t.sleep_speed_mps = std::min(t.sleep_speed_mps, o.sleep_speed_mps);
+      t.length_m = std::min(t.length_m, o.length_m);
+    }
+    return t;
+  };
+  std::vector<Tol> pair_tol;
+  for (const IslandPair& p : island.pairs) pair_tol.push_back(tol_of(p));
+
+  auto pair_separation = [&](std::size_t p, const IslandState& s) {
+    const IslandPair& pr = island.pairs[p];
+    const Pose pb = pose_of(s[pr.b.index]);
+    const RigidBody& B = *view.side_body(pr.b);
+    if (pr.a.kind == Side::Floor) return plane_separation(def_.floor->height, B, pb);
+    return separation(*view.side_body(pr.a), side_pose(view, pr.a, s), B, pb);
+  };
+  // Every contact point of the island within each pair's touch distance, in pair order.
+  auto find_contacts = [&](const IslandState& s) {
+    std::vector<IslandContact> out;
+    for (std::size_t p = 0; p < island.pairs.size(); ++p) {
+      const IslandPair& pr = island.pairs[p];
+      const RigidBody& B = *view.side_body(pr.b);
+      const Pose pb = pose_of(s[pr.b.index]);
+      const Pose pa = side_pose(view, pr.a, s);
+      const Manifold m = pr.a.kind == Side::Floor
+                             ? collide_plane(def_.floor->height, B, pb, pair_tol[p].touch_m)
+                             : collide(*view.side_body(pr.a), pa, B, pb, pair_tol[p].touch_m);
+      const RigidBody* A = view.side_body(pr.a);
+      for (int i = 0; i < m.count; ++i) {
+        IslandContact c;
+        c.pair = static_cast<int>(p);
+        c.feature = m.points[i].feature;
+        c.radius_a = A && A->is_sphere() ? A->radius() : 0.0;
+        c.radius_b = B.is_sphere() ? B.radius() : 0.0;
+        c.anchor_a = pr.a.kind == Side::Floor ? m.points[i].on_a
+                                              : Vec3(pa.R.transpose() * (m.points[i].on_a - pa.x));
+        c.anchor_b = pb.R.transpose() * (m.points[i].on_b - pb.x);
+        if (m.normal_of_b) {
+          c.normal_on = pr.b.index;
+          c.normal_local = pb.R.transpose() * m.normal;
+        } else if (pr.a.kind == Side::Member) {
+          c.normal_on = pr.a.index;
+          c.normal_local = pa.R.transpose() * m.normal;
+        } else {
+          c.normal_on = -1;
+          c.normal_local = m.normal;
+        }
+        out.push_back(c);
+      }
+      if (m.count > 0) pair_stats(pr.body_a, pr.body_b);  // touched
+    }
+    return out;
+  };
+  auto separation_of = [&](const IslandContact& c, const IslandState& s) {
+    const ContactFrame f = contact_frame(view, c, normalized(s, def_.rotation));
+    return f.n.dot(f.pb - f.pa);
+  };
+  auto write_back = [&] {
+    for (int k = 0; k < members; ++k) bodies_[island.members[k]].state = state[k];
+  };
+
+  const int first = island.members.front();
+  Stepping how = stepping(static_cast<std::size_t>(first));
+  std::vector<Stepping> per_body;
+  for (int body : island.members) per_body.push_back(stepping(static_cast<std::size_t>(body)));
+  double speed_scale = 0.0, noise_scale = 0.0;
+  for (int body : island.members) {
+    speed_scale = std::max(speed_scale, tolerances_[body].rest_speed_mps);
+    noise_scale = std::max(noise_scale, tolerances_[body].length_m);
+  }
+
+  // At rest already? Every member slow and the island in equilibrium on its contacts (with
+  // static friction inside its cones): its exact motion is then none, and it sleeps.
+  {
+    const std::vector<IslandContact> touching = find_contacts(state);
+    bool slow = !touching.empty() && def_.gravity.norm() > 0.0;
+    for (int k = 0; k < members && slow; ++k) {
+      const RigidBody& b = view.member(k);
+      const Mat3 R = state[k].R;
+      const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * state[k].L;
+      slow = state[k].P.norm() * b.inverse_mass() + w.norm() * b.bounding_radius() <=
+             tolerances_[island.members[k]].sleep_speed_mps;
+    }
+    if (slow && island_in_equilibrium(view, touching, state)) {
+      for (int k = 0; k < members; ++k) {
+        RigidBody& b = bodies_[island.members[k]];
+        b.state.P.setZero();
+        b.state.L.setZero();
+        b.at_rest = true;
+      }
+      return;
+    }
+  }
+
+  double remaining = h;
+  int events = 0;
+  bool contact = false;
+  bool solve_failed = false;
+  std::vector<char> active;
+  while (remaining > 0.0) {
+    std::vector<IslandContact> touching = find_contacts(state);
+    std::vector<IslandContact> held;
+    std::vector<char> pair_held(island.pairs.size(), 0);
+    if (!touching.empty()) {
+      contact = true;
+      std::vector<IslandContact> resting;
+      for (const IslandContact& c : touching)
+        if (std::abs(normal_speed(view, c, state)) <= pair_tol[c.pair].rest_speed_mps)
+          resting.push_back(c);
+      if (!resting.empty()) {
+        std::vector<double> impulses;
+        stats_.max_energy_gain_J =
+            std::max(stats_.max_energy_gain_J,
+                     resolve_island_impacts(view, resting, state, INFINITY, true, impulses));
+      }
+      for (IslandContact& c : resting)
+        if (normal_speed(view, c, state) <= pair_tol[c.pair].hold_speed_mps) {
+          pair_held[c.pair] = 1;
+          held.push_back(c);
+        }
+    }
+    // Sliding: the slip against what friction could remove over the stretch, 2 mu g τ.
+    for (IslandContact& c : held) {
+      const IslandPair& p = island.pairs[c.pair];
+      if (p.friction <= 0.0) continue;
+      const double dv = def_.gravity.norm() * remaining;
+      const IslandState one = state;
+      // The slip of the contact's surface points: their relative velocity off the normal.
+      const ContactFrame f = contact_frame(view, c, one);
+      auto point_velocity = [&](const Side& s, const Vec3& r) -> Vec3 {
+        if (s.kind != Side::Member) return Vec3::Zero();
+        const RigidBody& b = view.member(s.index);
+        const Mat3& R = one[s.index].R;
+        const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * one[s.index].L;
+        return one[s.index].P * b.inverse_mass() + w.cross(r);
+      };
+      Vec3 slip = point_velocity(p.b, f.rb) - point_velocity(p.a, f.ra);
+      slip -= f.n * f.n.dot(slip);
+      c.sliding = slip.norm() > 2.0 * p.friction * dv;
+    }
+    const IslandDynamics dynamics(view, &held, &active, &evaluations_, &solve_failed);
+    const IslandState start = state;
+    auto advanced = [&](double tau, StepInfo* info) {
+      return integrate_island(dynamics, start, tau, how, per_body, info);
+    };
+    double tau = remaining;
+    StepInfo end_info;
+    IslandState end = advanced(tau, &end_info);
+    // Contacts taken as sticking that friction cannot hold over the stretch (a box set on a
+    // ramp steeper than atan mu) slide instead, the way they went: the stretch is integrated
+    // again with kinetic friction there.
+    if (!held.empty()) {
+      std::vector<IslandContact> sticking;
+      std::vector<double> impulse;
+      std::vector<std::size_t> which;
+      const Eigen::VectorXd force = dynamics.contact_forces(start);
+      for (std::size_t i = 0; i < held.size(); ++i)
+        if (!held[i].sliding && island.pairs[held[i].pair].friction > 0.0) {
+          sticking.push_back(held[i]);
+          impulse.push_back(force(static_cast<Eigen::Index>(i)) * tau);
+          which.push_back(i);
+        }
+      IslandState trial = end;
+      if (!sticking.empty() && !apply_island_friction(view, sticking, impulse, trial)) {
+        bool changed = false;
+        for (std::size_t i : which) {
+          const ContactFrame f = contact_frame(view, held[i], end);
+          const IslandPair& p = island.pairs[held[i].pair];
+          auto velocity = [&](const Side& side, const Vec3& r) -> Vec3 {
+            if (side.kind != Side::Member) return Vec3::Zero();
+            const RigidBody& b = view.member(side.index);
+            const Mat3& R = end[side.index].R;
+            const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * end[side.index].L;
+            return end[side.index].P * b.inverse_mass() + w.cross(r);
+          };
+          Vec3 slip = velocity(p.b, f.rb) - velocity(p.a, f.ra);
+          slip -= f.n * f.n.dot(slip);
+          if (!(slip.norm() > 0.0)) continue;
+          held[i].sliding = true;
+          held[i].slip_direction = slip.normalized();
+          changed = true;
+        }
+        if (changed) end = advanced(tau, &end_info);
+      }
+    }
+
+    // Impacts: the pairs that do not rest on each other now, watched for a crossing.
+    // Every pair is watched. One that starts overlapping (a drifted contact) is watched for
+    // going deeper than it started: its gap is measured from its start's overlap. A pair held
+    // by contact forces keeps its held points at zero separation to round-off (rk4 drift of a
+    // held point: ~1e-15 ℓ a step); another point of it (a corner rocking down onto the same
+    // face) is an impact once it is 1e-3 of the touch distance (1e-9 ℓ) deep: far above the
+    // held points' drift, and far below anything a lift or an impact there could make visible.
+    std::vector<std::size_t> watched;
+    std::vector<double> gap_start, gap_offset;
+    for (std::size_t p = 0; p < island.pairs.size(); ++p) {
+      const double g = pair_separation(p, start);
+      watched.push_back(p);
+      gap_offset.push_back(std::min(g, 0.0) - (pair_held[p] ? 1e-3 * pair_tol[p].touch_m : 0.0));
+      gap_start.push_back(g - gap_offset.back());
+    }
+    auto pair_gap = [&](std::size_t w, const IslandState& s) {
+      return pair_separation(watched[w], s) - gap_offset[w];
+    };
+    bool impact = false;
+    if (!watched.empty()) {
+      // A bound on how fast each pair's separation can shrink: the relative speed of their
+      // centres plus each one's spin times its reach, the larger of the stretch's two ends
+      // (under a constant force a speed is largest at an end), with a 25 % margin for the
+      // contact forces' variation within the stretch. The separation is Lipschitz with it.
+      auto body_speed = [&](const IslandState& s, const Side& side) {
+        if (side.kind != Side::Member) return std::pair(Vec3(Vec3::Zero()), 0.0);
+        const RigidBody& b = view.member(side.index);
+        const Mat3 R = rotation_of(s[side.index], def_.rotation);
+        const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * s[side.index].L;
+        return std::pair(Vec3(s[side.index].P * b.inverse_mass()), w.norm() * b.bounding_radius());
+      };
+      std::vector<double> bound(watched.size());
+      for (std::size_t w = 0; w < watched.size(); ++w) {
+        const IslandPair& p = island.pairs[watched[w]];
+        double worst = 0.0;
+        for (const IslandState* s : {&start, static_cast<const IslandState*>(&end)}) {
+          const auto [va, spin_a] = body_speed(*s, p.a);
+          const auto [vb, spin_b] = body_speed(*s, p.b);
+          // A held pair slides on its contact plane: its gap changes only by the motion along
+          // the normal of its held points, or by turning.
+          double closing = (vb - va).norm();
+          if (pair_held[watched[w]]) {
+            closing = 0.0;
+            for (const IslandContact& c : held)
+              if (static_cast<std::size_t>(c.pair) == watched[w])
+                closing = std::max(closing, std::abs(normal_speed(view, c, *s)));
+          }
+          worst = std::max(worst, closing + spin_a + spin_b);
+        }
+        bound[w] = 1.25 * worst + 1e-300;
+      }
+      // Conservative advancement: no watched pair can close its gap (plus the touch distance)
+      // before t_a + (gap + touch) / bound; evaluate there, until one is found across.
+      double t_a = 0.0;
+      std::vector<double> g_a = gap_start;
+      IslandState s_b;
+      std::vector<double> g_b(watched.size());
+      double t_b = 0.0;
+      std::vector<std::size_t> crossed;
+      double min_span = INFINITY;
+      for (std::size_t w = 0; w < watched.size(); ++w)
+        min_span = std::min(min_span, pair_tol[watched[w]].toi_time_s);
+      for (int iter = 0; iter < 10000; ++iter) {
+        double safe = INFINITY;
+        for (std::size_t w = 0; w < watched.size(); ++w)
+          safe = std::min(safe, (std::max(g_a[w], 0.0) + pair_tol[watched[w]].touch_m) / bound[w]);
+        t_b = std::min(remaining, t_a + std::max(safe, 1e3 * min_span));
+        s_b = t_b >= remaining ? end : advanced(t_b, nullptr);
+        const IslandState nb = normalized(s_b, def_.rotation);
+        crossed.clear();
+        for (std::size_t w = 0; w < watched.size(); ++w) {
+          g_b[w] = pair_gap(w, nb);
+          const double noise =
+              32.0 * std::numeric_limits<double>::epsilon() *
+              (noise_scale + s_b[island.pairs[watched[w]].b.index].x.cwiseAbs().maxCoeff());
+          if (g_b[w] < -noise) crossed.push_back(w);
+        }
+        if (!crossed.empty() || t_b >= remaining) break;
+        t_a = t_b;
+        g_a = g_b;
+      }
+      if (!crossed.empty()) {
+        impact = true;
+        // Regula falsi (Illinois) on the smallest gap of the pairs found across, as for the
+        // floor, from [t_a, t_b] to within the finest pair's toi_time.
+        auto gap_at = [&](const IslandState& s) {
+          const IslandState ns = normalized(s, def_.rotation);
+          double g = INFINITY;
+          for (std::size_t w : crossed) g = std::min(g, pair_gap(w, ns));
+          return g;
+        };
+        double lo = t_a, hi = t_b;
+        double g_lo = INFINITY, g_hi = INFINITY;
+        for (std::size_t w : crossed) g_lo = std::min(g_lo, g_a[w]), g_hi = std::min(g_hi, g_b[w]);
+        g_lo = std::max(g_lo, 0.0);
+        IslandState at_lo = t_a == 0.0 ? start : advanced(t_a, nullptr);
+        StepInfo lo_info;
+        lo_info.controller = controllers_[first];
+        double toi = INFINITY;
+        for (std::size_t w : crossed) toi = std::min(toi, pair_tol[watched[w]].toi_time_s);
+        int side = 0, iter = 0;
+        const double noise = 32.0 * std::numeric_limits<double>::epsilon() * noise_scale;
+        for (; iter < 200 && hi - lo > toi; ++iter) {
+          double t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+          if (iter % 4 == 3 || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
+          StepInfo info;
+          const IslandState s = advanced(t, &info);
+          const double g = gap_at(s);
+          if (g >= -noise) {
+            lo = t, g_lo = g, at_lo = s, lo_info = info;
+            if (side == -1) g_hi *= 0.5;
+            side = -1;
+          } else {
+            hi = t, g_hi = g;
+            if (side == +1) g_lo *= 0.5;
+            side = +1;
+          }
+        }
+        if (iter == 200)
+          if (!diagnostics_.recur("contact_tolerance_missed"))
+            diagnostics_.warn("contact_tolerance_missed", time_ + (h - remaining),
+                              "the time of an impact between bodies could not be located to " +
+                                  fmt("%.3g", toi) + " s",
+                              "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
+        tau = lo;
+        end = at_lo;
+        end_info = lo_info;
+      }
+    }
+    state = end;
+    for (int body : island.members) controllers_[body] = end_info.controller;
+    // Static friction of the held contacts that do not slide, as impulses bounded by mu times
+    // their normal impulse over the stretch (sliding ones had theirs inside the step).
+    if (tau > 0.0 && !held.empty()) {
+      bool any_sticking = false;
+      for (const IslandContact& c : held)
+        any_sticking |= !c.sliding && island.pairs[c.pair].friction > 0.0;
+      if (any_sticking) {
+        const Eigen::VectorXd force = dynamics.contact_forces(start);
+        std::vector<IslandContact> sticking;
+        std::vector<double> impulse;
+        for (std::size_t i = 0; i < held.size(); ++i)
+          if (!held[i].sliding && island.pairs[held[i].pair].friction > 0.0) {
+            sticking.push_back(held[i]);
+            impulse.push_back(force(static_cast<Eigen::Index>(i)) * tau);
+          }
+        apply_island_friction(view, sticking, impulse, state);
+        std::vector<double> loads;
+        for (std::size_t i = 0; i < held.size(); ++i)
+          loads.push_back(force(static_cast<Eigen::Index>(i)) * tau);
+        restore_normal_speeds(view, held, loads, state);
+      }
+    }
+    const double t_event = time_ + (h - remaining) + tau;
+    remaining = impact ? remaining - tau : 0.0;
+    // Integration drift of held contacts is removed by moving the bodies apart along the
+    // normal (the lighter more); it counts as penetration, its potential energy as a gain.
+    for (const IslandContact& c : held) {
+      const double depth = -separation_of(c, state);
+      if (!(depth > 0.0)) continue;
+      const IslandPair& p = island.pairs[c.pair];
+      const ContactFrame f = contact_frame(view, c, state);
+      const double wa = p.a.kind == Side::Member ? view.member(p.a.index).inverse_mass() : 0.0;
+      const double wb = view.member(p.b.index).inverse_mass();
+      const Vec3 move_b = depth * wb / (wa + wb) * f.n;
+      state[p.b.index].x += move_b;
+      double gain = -view.member(p.b.index).mass() * def_.gravity.dot(move_b);
+      if (p.a.kind == Side::Member) {
+        const Vec3 move_a = -depth * wa / (wa + wb) * f.n;
+        state[p.a.index].x += move_a;
+        gain -= view.member(p.a.index).mass() * def_.gravity.dot(move_a);
+      }
+      stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, gain);
+      stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
+      PairContactStats& ps = pair_stats(p.body_a, p.body_b);
+      ps.deepest_penetration_m = std::max(ps.deepest_penetration_m, depth);
+      if (depth > 1e-4 * pair_tol[c.pair].length_m)
+        if (!diagnostics_.recur("contact_tolerance_missed"))
+          diagnostics_.warn("contact_tolerance_missed", t_event,
+                            "bodies resting on each other sank " + fmt("%.3g", depth) +
+                                " m into each other in one step",
+                            smaller_step_fix());
+    }
+    if (impact) {
+      contact = true;
+      const std::vector<IslandContact> now = find_contacts(state);
+      // Which pairs approach, and how fast, before the impulses.
+      std::vector<double> approach(island.pairs.size(), 0.0);
+      for (const IslandContact& c : now)
+        approach[c.pair] = std::max(approach[c.pair], -normal_speed(view, c, state));
+      const bool capped = events >= Tol::kMaxEventsPerStep;
+      std::vector<double> impulses;
+      const double rest = capped ? INFINITY : speed_scale;
+      stats_.max_energy_gain_J = std::max(
+          stats_.max_energy_gain_J, resolve_island_impacts(view, now, state, rest, capped, impulses));
+      for (std::size_t p = 0; p < island.pairs.size(); ++p) {
+        if (!(approach[p] > 0.0)) continue;
+        const IslandPair& pr = island.pairs[p];
+        ++stats_.impacts;
+        if (stats_.events.size() < ContactStats::kMaxRecordedImpacts)
+          stats_.events.push_back({t_event, pr.body_b, approach[p], pr.body_a});
+        PairContactStats& ps = pair_stats(pr.body_a, pr.body_b);
+        if (ps.impacts++ == 0) ps.first_impact_t_s = t_event;
+      }
+      if (events == Tol::kMaxEventsPerStep)
+        if (!diagnostics_.recur("event_cap_hit"))
+          diagnostics_.warn("event_cap_hit", t_event,
+                            "bodies met " + std::to_string(Tol::kMaxEventsPerStep) +
+                                " impacts in one step; the rest of the step was made inelastic",
+                            "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
+      if (++events >= 2 * Tol::kMaxEventsPerStep) {
+        // Pathological: finish the step without contact forces rather than loop on.
+        const std::vector<IslandContact> none;
+        const IslandDynamics free(view, &none, nullptr, &evaluations_, nullptr);
+        state = integrate_island(free, state, remaining, how, per_body, nullptr);
+        remaining = 0.0;
+      }
+    }
+    keep_step(static_cast<std::size_t>(first), end_info);
+  }
+  if (solve_failed && !diagnostics_.recur("contact_solve_fallback"))
+    diagnostics_.warn("contact_solve_fallback", time_,
+                      "the contact forces of the island of body \"" +
+                          bodies_[first].name() + "\" had no exact solution the pivoting solver "
+                          "reached (sliding friction); an approximate one was used",
+                      smaller_step_fix());
+  write_back();
+  for (int body : island.members) {
+    check_state(static_cast<std::size_t>(body));
+    check_free_flight(static_cast<std::size_t>(body), contact);
+  }
+}
+
+}  // namespace tumble
