@@ -200,5 +200,35 @@ TEST(DiffReport, AVideoOfAnotherLengthListsTheMissingFramesAsOneFailureFirst) {
       << page;
 }
 
+// The README's CI recipe, run as written: its first two sh blocks under "Image-diff tests in
+// CI" (approve the goldens, then render and compare), in a fresh folder that sees assets/ and
+// has the built tumble first in PATH.
+TEST(DiffReport, ReadmeCiRecipeRunsAsWritten) {
+  const TestDir dir;
+  const std::string readme = read_file(source_dir() / "README.md");
+  std::size_t at = readme.find("\n## Image-diff tests in CI\n");
+  ASSERT_NE(at, std::string::npos) << "README: no section \"Image-diff tests in CI\"";
+  std::string script;
+  for (int block = 0; block < 2; ++block) {
+    at = readme.find("```sh\n", at);
+    ASSERT_NE(at, std::string::npos);
+    const std::size_t end = readme.find("```\n", at + 6);
+    script += readme.substr(at + 6, end - at - 6);
+    at = end + 4;
+  }
+  ASSERT_TRUE(contains(script, "--report diff-report --junit diff.xml")) << script;
+  fs::create_directory_symlink(source_dir() / "assets", dir / "assets");
+  const std::string path = tumble_binary().parent_path().string() + ":" + getenv("PATH");
+  RunOptions options;
+  options.timeout = std::chrono::seconds(120);
+  const RunResult r = run_program(
+      "bash", {"-euo", "pipefail", "-c", "export PATH=\"$1\"; " + script, "recipe", path},
+      dir.path(), options);
+  EXPECT_EQ(r.exit_code, 0) << script << describe(r);
+  EXPECT_TRUE(contains(r.out, "tumble diff: all 2 files within tolerance")) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "diff-report/index.html"));
+  EXPECT_TRUE(contains(read_file(dir / "diff.xml"), "tests=\"2\" failures=\"0\""));
+}
+
 }  // namespace
 }  // namespace tumble_e2e
