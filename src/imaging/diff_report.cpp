@@ -223,13 +223,13 @@ DiffReport::DiffReport(fs::path dir, DiffInputs inputs) : impl_(std::make_unique
   for (const std::string& input : {m.inputs.expected, m.inputs.actual})
     if (is_within(input, m.final_dir))
       bad(flag + " is or holds the input " + in_quotes(input) + "; the report replaces the folder");
-  if (fs::is_directory(m.final_dir) && !fs::is_empty(m.final_dir) &&
+  std::error_code ec;
+  if (fs::is_directory(m.final_dir, ec) && !fs::is_empty(m.final_dir, ec) &&
       !is_earlier_report(m.final_dir))
     bad(flag + " holds files that are not a tumble diff report; the report replaces the whole " +
         "folder, so give a new or empty one");
   make_output_dir(m.final_dir.parent_path());
   m.temporary = beside(m.final_dir, ".partial");
-  std::error_code ec;
   fs::remove_all(m.temporary, ec);  // a leftover of an interrupted run
   fs::create_directories(m.temporary / "images", ec);
   if (ec) cannot(dir, ec.message());
