@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "tumble/image.hpp"
 
@@ -25,6 +26,10 @@ class VideoReader {
   /// Decodes the next frame into `out` (RGB, top-down, the frame's own size); false after the
   /// last. Throws tumble::Error (BadInput) naming the file when the data cannot be decoded.
   bool next(Image& out);
+
+  /// The presentation time, in seconds from the stream's start, of the frame next() returned
+  /// last; empty before the first or when the file gives it no timestamp.
+  std::optional<double> frame_time_s() const;
 
   /// The stream's frame size as the container declares it.
   int width() const;

@@ -117,6 +117,8 @@ struct DiffOptions {
   double max_fraction = 0.0;
   std::optional<double> min_psnr_db;
   std::string diff_out;  // empty: no diff images
+  std::string report;    // --report DIR; empty: none
+  std::string junit;     // --junit FILE; empty: none
 };
 void add_diff_command(CLI::App& app, DiffOptions& o);
 /// 0 within tolerance, 1 beyond it; throws tumble::Error (BadInput) for a missing or undecodable

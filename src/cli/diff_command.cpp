@@ -1,7 +1,8 @@
 // tumble diff: two PNGs, two folders of PNGs (paired by file name) or two videos (frame by frame)
 // compared within tolerances. One line per pair on stdout, a one-line verdict at the end, and
-// with --diff-out a diff picture for every pair beyond tolerance. Exit 0 within tolerance, 1
-// beyond it; a missing or undecodable input is a tumble::Error (exit 2) naming the file.
+// with --diff-out a diff picture for every pair beyond tolerance; --report and --junit through
+// DiffOutputs. Exit 0 within tolerance, 1 beyond it; a missing or undecodable input is a
+// tumble::Error (exit 2) naming the file.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "diff_outputs.hpp"
 #include "progress.hpp"
 #include "tumble/atomic_file.hpp"
 #include "tumble/error.hpp"
@@ -83,13 +85,13 @@ std::set<std::string> png_names(const fs::path& dir) {
 // Counts the pairs, prints one line per pair and writes the diff pictures.
 class Comparison {
  public:
-  Comparison(const DiffOptions& o, const DiffTolerance& tolerance)
-      : options_(o), tolerance_(tolerance) {}
+  Comparison(const DiffOptions& o, const DiffTolerance& tolerance, DiffOutputs& outputs)
+      : options_(o), tolerance_(tolerance), outputs_(outputs) {}
 
   // Compares one pair; `diff_path` (empty: none) receives the diff picture when it is beyond
-  // tolerance.
+  // tolerance. `frame` and `time_s`: a video frame's index and presentation time.
   void compare(const std::string& name, const Image& expected, const Image& actual,
-               const fs::path& diff_path) {
+               const fs::path& diff_path, long frame = -1, std::optional<double> time_s = {}) {
     const DiffResult r = compare_images(expected, actual, tolerance_.max_delta);
     const bool beyond = !r.within(tolerance_);
     ++pairs_;
@@ -110,6 +112,9 @@ class Comparison {
         line += text;
       }
     }
+    // The report and the JUnit file carry the same words as stdout: the line after "NAME: ".
+    outputs_.compared(name, r, beyond, line.substr(name.size() + 2), expected, actual, frame,
+                      time_s);
     if (beyond) {
       line += " -- beyond tolerance";
       if (!diff_path.empty()) {
@@ -121,11 +126,18 @@ class Comparison {
     std::printf("%s\n", line.c_str());
   }
 
-  // A pair with one side missing: always beyond tolerance, nothing to draw.
-  void unmatched(const std::string& line, long count = 1) {
-    pairs_ += count;
-    beyond_ += count;
-    std::printf("%s -- beyond tolerance\n", line.c_str());
+  // A file only one folder has, `present`: always beyond tolerance, nothing to draw.
+  void unmatched(const std::string& name, const std::string& where, DiffPair::Side side,
+                 const fs::path& present) {
+    outputs_.one_sided(name, where, side, present);
+    print_unmatched(name + ": " + where, 1);
+  }
+  // `count` frames from `first` that only one video has.
+  void unmatched_frames(long first, long count, const std::string& where, DiffPair::Side side) {
+    outputs_.one_sided_frames(first, count, where, side);
+    print_unmatched(frame_stem(first) + (count > 1 ? " to " + frame_stem(first + count - 1) : "") +
+                        ": " + where,
+                    count);
   }
 
   // "tumble diff: 2 of 30 frames differ beyond tolerance (max delta 0, max fraction 0)"; `what`
@@ -166,8 +178,15 @@ class Comparison {
     return std::to_string(image.width) + "x" + std::to_string(image.height);
   }
 
+  void print_unmatched(const std::string& line, long count) {
+    pairs_ += count;
+    beyond_ += count;
+    std::printf("%s -- beyond tolerance\n", line.c_str());
+  }
+
   const DiffOptions& options_;
   DiffTolerance tolerance_;
+  DiffOutputs& outputs_;
   long pairs_ = 0;
   long beyond_ = 0;
 };
@@ -206,11 +225,13 @@ int diff_folders(Comparison& c, const fs::path& expected, const fs::path& actual
     bad("no PNG files in " + quoted(expected) + " or " + quoted(actual) + " to compare");
   for (const std::string& name : all) {
     if (!in_actual.count(name)) {
-      c.unmatched(name + ": missing from " + quoted(actual / name) + " (only in " +
-                  quoted(expected) + ")");
+      c.unmatched(name,
+                  "missing from " + quoted(actual / name) + " (only in " + quoted(expected) + ")",
+                  DiffPair::Side::ExpectedOnly, expected / name);
     } else if (!in_expected.count(name)) {
-      c.unmatched(name + ": missing from " + quoted(expected / name) + " (only in " +
-                  quoted(actual) + ")");
+      c.unmatched(name,
+                  "missing from " + quoted(expected / name) + " (only in " + quoted(actual) + ")",
+                  DiffPair::Side::ActualOnly, actual / name);
     } else {
       const Image e = read_png(expected / name);
       const Image a = read_png(actual / name);
@@ -237,15 +258,16 @@ int diff_videos(Comparison& c, const fs::path& expected, const fs::path& actual)
       while (have_a && actual_video.next(a)) ++actual_frames;
       if (expected_frames == actual_frames) break;
       const long extra = std::abs(expected_frames - actual_frames);
-      const fs::path& longer = expected_frames > actual_frames ? expected : actual;
-      c.unmatched(frame_stem(frames) + (extra > 1 ? " to " + frame_stem(frames + extra - 1) : "") +
-                      ": only in " + quoted(longer),
-                  extra);
+      const bool expected_longer = expected_frames > actual_frames;
+      c.unmatched_frames(
+          frames, extra, "only in " + quoted(expected_longer ? expected : actual),
+          expected_longer ? DiffPair::Side::ExpectedOnly : DiffPair::Side::ActualOnly);
       return c.verdict("frames", "frame counts differ: " + std::to_string(expected_frames) +
                                      " expected, " + std::to_string(actual_frames) + " actual");
     }
     const std::string name = frame_stem(frames);
-    c.compare(name, e, a, diff_out.empty() ? fs::path() : diff_out / (name + ".png"));
+    c.compare(name, e, a, diff_out.empty() ? fs::path() : diff_out / (name + ".png"), frames,
+              expected_video.frame_time_s());
   }
   if (frames == 0)
     bad("no frames in " + quoted(expected) + " or " + quoted(actual) + " to compare");
@@ -271,6 +293,15 @@ void add_diff_command(CLI::App& app, DiffOptions& o) {
                   "Write a diff picture (grey: equal, magenta: changed) for each pair beyond "
                   "tolerance, and only for those: a PNG file for two images, a folder of "
                   "<name>.png for folders and videos");
+  cmd->add_option("--report", o.report,
+                  "Write an HTML report into this folder (index.html and the pictures it shows; "
+                  "opens from disk, fetches nothing): every pair's verdict and metrics, failures "
+                  "first, with expected, actual, diff and a swipe compare; written whatever the "
+                  "verdict");
+  cmd->add_option("--junit", o.junit,
+                  "Write JUnit XML to this file for CI dashboards: one testcase per pair, a "
+                  "failure with the metrics for each pair beyond tolerance; written whatever the "
+                  "verdict");
 }
 
 int run_diff(const DiffOptions& o) {
@@ -290,16 +321,27 @@ int run_diff(const DiffOptions& o) {
         " (" + kind_name(kind_of(actual)) +
         "): give two PNG files, two folders of PNGs or two videos");
 
-  Comparison comparison(o, DiffTolerance{o.max_delta, o.max_fraction, o.min_psnr_db});
+  const DiffTolerance tolerance{o.max_delta, o.max_fraction, o.min_psnr_db};
+  DiffOutputs outputs(o, DiffInputs{kind == InputKind::Png      ? DiffInputs::Kind::Images
+                                    : kind == InputKind::Folder ? DiffInputs::Kind::Folders
+                                                                : DiffInputs::Kind::Videos,
+                                    o.expected, o.actual, tolerance});
+  Comparison comparison(o, tolerance, outputs);
+  int exit_code = 0;
   switch (kind) {
     case InputKind::Png:
-      return diff_images(comparison, expected, actual);
+      exit_code = diff_images(comparison, expected, actual);
+      break;
     case InputKind::Folder:
-      return diff_folders(comparison, expected, actual);
+      exit_code = diff_folders(comparison, expected, actual);
+      break;
     case InputKind::Video:
-      return diff_videos(comparison, expected, actual);
+      exit_code = diff_videos(comparison, expected, actual);
+      break;
   }
-  return 0;
+  // Whatever the verdict: a failing job is when the report is wanted most.
+  outputs.finish();
+  return exit_code;
 }
 
 }  // namespace tumble::cli

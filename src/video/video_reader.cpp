@@ -81,7 +81,8 @@ struct VideoReader::Impl {
   int stream_index = -1;
   PacketPtr packet;
   FramePtr frame;
-  bool draining = false;  // the end-of-stream signal has been sent
+  bool draining = false;               // the end-of-stream signal has been sent
+  std::optional<double> frame_time_s;  // of the frame next() returned last
 
   // The conversion to RGB, remade only when what it converts from changes.
   SwsPtr converter;
@@ -198,8 +199,22 @@ bool VideoReader::next(Image& out) {
     m.feed();
   }
   m.convert(*m.frame, out);
+  // best_effort_timestamp: the pts, or the decoder's guess where the container has none. The
+  // stream's start is subtracted so the first frame is at 0 whatever the muxer's offset.
+  const AVStream* stream = m.demuxer->streams[m.stream_index];
+  const std::int64_t pts = m.frame->best_effort_timestamp;
+  if (pts == AV_NOPTS_VALUE) {
+    m.frame_time_s.reset();
+  } else {
+    const std::int64_t start = stream->start_time == AV_NOPTS_VALUE ? 0 : stream->start_time;
+    m.frame_time_s = static_cast<double>(pts - start) * av_q2d(stream->time_base);
+  }
   av_frame_unref(m.frame.get());
   return true;
+}
+
+std::optional<double> VideoReader::frame_time_s() const {
+  return impl_->frame_time_s;
 }
 
 int VideoReader::width() const {
