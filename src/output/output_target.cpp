@@ -144,26 +144,31 @@ void write_through(const fs::path& finished, const OutputTarget& target) {
 OutputTarget output_target(const fs::path& path) {
   OutputTarget t;
   t.path = path;
-  t.resolved = follow_links(path);
-  const fs::path folder = folder_of(t.resolved);
   struct stat st {};
+  // stat() follows every link, /proc's too: /dev/stdout → /proc/self/fd/1 → "pipe:[1234]" is
+  // a FIFO to stat() but no path to read_symlink(). A device or FIFO is opened by the path as
+  // given (open() follows the same links), so it needs no resolving.
+  if (stat(path.c_str(), &st) == 0) {
+    if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) {
+      t.resolved = path;
+      t.kind = OutputTarget::Kind::WriteThrough;
+      return t;
+    }
+    if (S_ISDIR(st.st_mode)) fail(path, "it is a folder");
+    if (!S_ISREG(st.st_mode)) fail(path, "it is neither a file, a character device nor a FIFO");
+  } else if (errno != ENOENT && errno != ENOTDIR) {
+    fail(path, errno_text(errno));
+  }
+  // A regular file, or nothing yet (a dangling link: what it names): replaced by a rename over
+  // what the links name, so the links stay, and beside it, so the rename stays on one file system.
+  t.resolved = follow_links(path);
+  t.kind = OutputTarget::Kind::Replace;
+  const fs::path folder = folder_of(t.resolved);
   if (stat(folder.c_str(), &st) != 0)
     fail(path, errno == ENOENT ? "the folder \"" + folder.string() +
                                      "\" does not exist (tumble creates only --out folders)"
                                : errno_text(errno));
   if (!S_ISDIR(st.st_mode)) fail(path, "\"" + folder.string() + "\" is not a folder");
-  if (stat(t.resolved.c_str(), &st) != 0) {
-    if (errno != ENOENT) fail(path, errno_text(errno));
-    t.kind = OutputTarget::Kind::Replace;  // nothing there yet
-  } else if (S_ISREG(st.st_mode)) {
-    t.kind = OutputTarget::Kind::Replace;
-  } else if (S_ISCHR(st.st_mode) || S_ISFIFO(st.st_mode)) {
-    t.kind = OutputTarget::Kind::WriteThrough;
-  } else if (S_ISDIR(st.st_mode)) {
-    fail(path, "it is a folder");
-  } else {
-    fail(path, "it is neither a file, a character device nor a FIFO");
-  }
   return t;
 }
 
