@@ -121,8 +121,13 @@ TEST(OutputTarget, AFifoGetsTheBytesAndStaysAFifo) {
   const fs::path dir = fresh_dir("fifo");
   ASSERT_EQ(mkfifo((dir / "pipe").c_str(), 0666), 0);
   const std::string bytes(200000, 'q');  // more than a pipe's buffer: the reader must drain it
+  // Held open for writing by the test as well, so that the reader never blocks on a FIFO that a
+  // broken writer replaced; let go once the write is done, so the reader sees the end.
+  const int holder = open((dir / "pipe").c_str(), O_RDWR | O_CLOEXEC);
+  ASSERT_GE(holder, 0);
   auto reader = std::async(std::launch::async, [&] { return slurp(dir / "pipe"); });
   write_file_atomically(dir / "pipe", bytes);
+  close(holder);
   EXPECT_EQ(reader.get(), bytes);
   struct stat st {};
   ASSERT_EQ(lstat((dir / "pipe").c_str(), &st), 0);
