@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "tumble/output_folder.hpp"
 #include "tumble/scene.hpp"
 #include "tumble/world.hpp"
 #include "tumble/world_builder.hpp"
@@ -40,7 +41,7 @@ struct RunReport {
   std::string command;  ///< "simulate", "render"
   const Scene* scene = nullptr;
   long steps = 0;
-  long samples = 0;  ///< trajectory samples or frames
+  long samples = 0;            ///< trajectory samples or frames
   std::optional<long> frames;  ///< render: the clip's frame count N = round(duration · fps)
   /// render: clip frames not drawn again because nothing in them moved (the previous image).
   std::optional<long> frames_reused;
@@ -51,10 +52,15 @@ struct RunReport {
   StageTimes times;
   double energy_start_J = 0.0, energy_end_J = 0.0;
   ContactStats contact;
-  std::vector<std::filesystem::path> outputs;  ///< hashed when the report is written
-  const World* world = nullptr;                ///< for per-body mass properties
-  const SceneModels* models = nullptr;         ///< mesh bodies: volume, axes, hull, repairs
-  std::optional<FigureFacts> figures;          ///< render only
+  /// This run's outputs, exactly (run.json is the manifest), by their final names; hashed
+  /// when the report is written.
+  std::vector<std::filesystem::path> outputs;
+  /// Where the outputs are still staged (the report is written before they are committed):
+  /// their digests are taken there. Null: the outputs are in place.
+  const OutputFolder* staged_in = nullptr;
+  const World* world = nullptr;         ///< for per-body mass properties
+  const SceneModels* models = nullptr;  ///< mesh bodies: volume, axes, hull, repairs
+  std::optional<FigureFacts> figures;   ///< render only
 };
 
 /// Writes run.json atomically at `path`.

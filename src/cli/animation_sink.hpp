@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "frame_sink.hpp"
+#include "tumble/output_folder.hpp"
 #include "tumble/premultiplied.hpp"
 
 namespace tumble::cli {
@@ -29,15 +30,15 @@ class AnimationSink : public FrameSink {
 
  protected:
   template <class Settings>
-  AnimationSink(const std::filesystem::path& path, const Settings& settings) : path_(path) {
-    writer_.emplace(path, settings);
+  AnimationSink(const StagedOutput& out, const Settings& settings) : path_(out.final) {
+    writer_.emplace(out.staged, settings);
   }
   /// Whether the next frame is worth converting to straight alpha (a GIF skips some frames).
   virtual bool converts_next(const Writer&) const { return true; }
   /// The finished writer, for the facts report() gives.
   virtual void finished(const Writer&) {}
 
-  std::filesystem::path path_;
+  std::filesystem::path path_;  // the final name, for run.json
   std::optional<Writer> writer_;
   bool written_ = false;
 

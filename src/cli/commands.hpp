@@ -14,12 +14,14 @@
 
 namespace tumble {
 class EglContext;
+class OutputFolder;
 class Renderer;
 }  // namespace tumble
 
 namespace tumble::cli {
 
-/// A run stopped by SIGINT/SIGTERM; main() exits with 128 + the signal, like a shell.
+/// A run stopped by SIGINT, SIGTERM, SIGHUP or SIGQUIT; main() exits with 128 + the signal, like
+/// a shell.
 struct Interrupted {
   int signal;
 };
@@ -49,6 +51,10 @@ Scene load_scene(const CommonOptions& o);
 void apply_overrides(Scene& scene, const CommonOptions& o);
 /// The output folder, created. Throws tumble::Error (Environment) when it cannot be.
 std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene);
+/// The output folder of a run that writes its outputs as one set (render, simulate): created,
+/// locked against a second run and staged (tumble/output_folder.hpp). Throws tumble::Error
+/// (Environment).
+std::unique_ptr<OutputFolder> open_output_folder(const CommonOptions& o, const Scene& scene);
 /// Registers --strict (render and simulate).
 void add_strict_option(CLI::App& cmd, CommonOptions& o);
 /// Prints each diagnostic once as `tumble: warning: message (fix)` unless quiet; returns the

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "tumble/atomic_file.hpp"
+#include "tumble/output_folder.hpp"
 #include "tumble/trajectory_writer.hpp"
 
 namespace tumble::cli {
@@ -95,11 +96,23 @@ int report_diagnostics(const CommonOptions& o, const Diagnostics& diagnostics) {
   return o.strict && !diagnostics.empty() ? 4 : 0;
 }
 
+namespace {
+
+std::filesystem::path output_path(const CommonOptions& o, const Scene& scene) {
+  return o.out_dir.empty() ? std::filesystem::path("out") / scene.stem
+                           : std::filesystem::path(o.out_dir);
+}
+
+}  // namespace
+
 std::filesystem::path output_dir(const CommonOptions& o, const Scene& scene) {
-  const std::filesystem::path dir = o.out_dir.empty() ? std::filesystem::path("out") / scene.stem
-                                                      : std::filesystem::path(o.out_dir);
+  const std::filesystem::path dir = output_path(o, scene);
   make_output_dir(dir);
   return dir;
+}
+
+std::unique_ptr<OutputFolder> open_output_folder(const CommonOptions& o, const Scene& scene) {
+  return std::make_unique<OutputFolder>(output_path(o, scene));
 }
 
 }  // namespace tumble::cli

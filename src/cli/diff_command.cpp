@@ -118,7 +118,9 @@ class Comparison {
     if (beyond) {
       line += " -- beyond tolerance";
       if (!diff_path.empty()) {
-        if (diff_path.has_parent_path()) make_output_dir(diff_path.parent_path());
+        // Folders and videos: the --diff-out folder is made (an output folder, like --out); a
+        // PNG file's folder must exist (output_target.hpp: tumble creates only output folders).
+        if (diff_path != fs::path(options_.diff_out)) make_output_dir(options_.diff_out);
         write_png(diff_path, diff_image(expected, actual, tolerance_.max_delta));
         line += "; diff image " + diff_path.string();
       }

@@ -1,10 +1,11 @@
 #pragma once
 // Where rendered frames go. The frame pipeline hands each sink the pixels it asked for, in
 // order; a sink turns them into one kind of output (clip.mp4, frames/, a still, strobe.png,
-// clip.gif, clip.webp). Every sink writes under a temporary name and renames into place only
-// when its output is complete, so a failed or interrupted run leaves no half-written file and
-// the previous good one stays. A new kind of output is a new sink (one file), not a new branch
-// in the pipeline.
+// clip.gif, clip.webp). Every sink writes into the run's staging folder (OutputFolder,
+// tumble/output_folder.hpp) under its output's final name there, and reports the final name;
+// the run commits every output together, run.json last, so a failed or interrupted run leaves
+// no half-written file and the previous good one stays. A new kind of output is a new sink (one
+// file), not a new branch in the pipeline.
 
 #include <cstdint>
 #include <filesystem>
@@ -33,9 +34,10 @@ class FrameSink {
   /// Takes the next frame (clip sinks: every frame of the clip, in order, on the encoder
   /// thread; picture sinks: their one image). Throws tumble::Error when writing fails.
   virtual void accept(const FrameView& frame) = 0;
-  /// Completes the output and renames it into place. Throws tumble::Error when it cannot.
+  /// Completes the output in the staging folder. Throws tumble::Error when it cannot.
   virtual void finish() = 0;
-  /// Drops whatever was written so far; the previous good output under the final name stays.
+  /// Drops whatever was written so far (the staging folder goes too); the previous good output
+  /// under the final name stays.
   virtual void abort() noexcept = 0;
   /// Adds the sink's outputs, its stage time (`seconds` spent in accept and finish) and any
   /// facts of its own to run.json.

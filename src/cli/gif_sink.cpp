@@ -11,8 +11,8 @@ namespace {
 
 class GifSink final : public AnimationSink<GifWriter> {
  public:
-  GifSink(const std::filesystem::path& path, const GifSettings& settings)
-      : AnimationSink(path, settings),
+  GifSink(const StagedOutput& out, const GifSettings& settings)
+      : AnimationSink(out, settings),
         timing_(writer_->timing()),
         delays_cs_(writer_->delays_cs()) {}
 
@@ -43,9 +43,9 @@ class GifSink final : public AnimationSink<GifWriter> {
 
 }  // namespace
 
-SinkPtr make_gif_sink(const std::filesystem::path& path, int width, int height, int fps,
-                      long clip_frames, bool alpha) {
-  return std::make_unique<GifSink>(path, GifSettings{width, height, fps, clip_frames, alpha});
+SinkPtr make_gif_sink(const StagedOutput& out, int width, int height, int fps, long clip_frames,
+                      bool alpha) {
+  return std::make_unique<GifSink>(out, GifSettings{width, height, fps, clip_frames, alpha});
 }
 
 }  // namespace tumble::cli

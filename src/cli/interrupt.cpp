@@ -1,6 +1,8 @@
-// Ctrl-C and SIGTERM end a run cleanly: the handler only raises a flag; the frame and sample
-// loops check it and throw, so every temporary output is removed on the way out (the final
-// names are never touched) and the encoder thread is joined.
+// Ctrl-C (SIGINT), SIGTERM (a scheduler, a CI timeout), SIGHUP (the ssh session or terminal
+// went away) and SIGQUIT (Ctrl-\) end a run cleanly: the handler only raises a flag; the frame
+// and sample loops check it and throw, so every staged output is removed on the way out (the
+// final names are never touched), the output folder's lock is released and the encoder thread
+// is joined; main() exits with 128 + the signal, as a shell reports a process the signal killed.
 #include <csignal>
 
 #include "commands.hpp"
@@ -17,8 +19,20 @@ extern "C" void on_signal(int signal) {
 }  // namespace
 
 void install_interrupt_handlers() {
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT}) {
+    struct sigaction previous {};
+    sigaction(signal, nullptr, &previous);
+    // Ignored when tumble started (nohup, a shell's background job ignoring SIGINT): the user
+    // asked for the run to survive it, so it stays ignored.
+    if (previous.sa_handler == SIG_IGN) continue;
+    struct sigaction action {};
+    action.sa_handler = on_signal;
+    sigemptyset(&action.sa_mask);
+    // Restarted system calls: a write interrupted by the signal completes rather than failing
+    // as if the disk were full; the loops see the flag at the next frame or sample.
+    action.sa_flags = SA_RESTART;
+    sigaction(signal, &action, nullptr);
+  }
 }
 
 bool interrupted() {

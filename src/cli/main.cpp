@@ -10,7 +10,7 @@
 
 int main(int argc, char** argv) {
   using namespace tumble;
-  // First of all: a Ctrl-C or SIGTERM that comes while the command line is still being read
+  // First of all: a Ctrl-C, SIGTERM, SIGHUP or SIGQUIT that comes while the command line is still being read
   // (a slow start on a busy machine) must end the run cleanly too, not kill it.
   cli::install_interrupt_handlers();
   CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};

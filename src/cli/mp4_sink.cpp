@@ -10,9 +10,9 @@ namespace {
 
 class Mp4Sink final : public FrameSink {
  public:
-  Mp4Sink(const std::filesystem::path& path, const Mp4Settings& settings, Color background)
-      : path_(path), background_(background) {
-    writer_.emplace(path, settings);
+  Mp4Sink(const StagedOutput& out, const Mp4Settings& settings, Color background)
+      : path_(out.final), background_(background) {
+    writer_.emplace(out.staged, settings);
   }
 
   void accept(const FrameView& f) override {
@@ -39,7 +39,7 @@ class Mp4Sink final : public FrameSink {
     writer_.reset();
   }
 
-  void abort() noexcept override { writer_.reset(); }  // removes the temporary file
+  void abort() noexcept override { writer_.reset(); }  // removes its temporary file
 
   void report(RunReport& r, double seconds) const override {
     r.outputs.push_back(path_);
@@ -57,9 +57,8 @@ class Mp4Sink final : public FrameSink {
 
 }  // namespace
 
-SinkPtr make_mp4_sink(const std::filesystem::path& path, const Mp4Settings& settings,
-                      Color background) {
-  return std::make_unique<Mp4Sink>(path, settings, background);
+SinkPtr make_mp4_sink(const StagedOutput& out, const Mp4Settings& settings, Color background) {
+  return std::make_unique<Mp4Sink>(out, settings, background);
 }
 
 }  // namespace tumble::cli

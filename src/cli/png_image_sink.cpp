@@ -1,5 +1,5 @@
 // One PNG picture (a still, strobe.png) as a sink: the image is kept until the run ends and
-// written then, so a run that fails or is interrupted leaves the previous picture in place.
+// written then (into the staging folder; committed with the run's other outputs).
 #include <optional>
 
 #include "frame_sinks.hpp"
@@ -10,8 +10,8 @@ namespace {
 
 class PngImageSink final : public FrameSink {
  public:
-  PngImageSink(const std::filesystem::path& path, PngOptions::Packing packing)
-      : path_(path), packing_(packing) {}
+  PngImageSink(const StagedOutput& out, PngOptions::Packing packing)
+      : out_(out), packing_(packing) {}
 
   void accept(const FrameView& f) override {
     image_ = f.premultiplied ? straight_image_from_gl_rgba(f.rgba, f.width, f.height)
@@ -21,7 +21,7 @@ class PngImageSink final : public FrameSink {
 
   void finish() override {
     if (!image_) return;
-    write_png(path_, *image_, {alpha_, packing_});
+    write_png(out_.staged, *image_, {alpha_, packing_});
     image_.reset();
     written_ = true;
   }
@@ -29,12 +29,12 @@ class PngImageSink final : public FrameSink {
   void abort() noexcept override { image_.reset(); }
 
   void report(RunReport& r, double seconds) const override {
-    if (written_) r.outputs.push_back(path_);
+    if (written_) r.outputs.push_back(out_.final);
     r.times.png_s = r.times.png_s.value_or(0.0) + seconds;
   }
 
  private:
-  std::filesystem::path path_;
+  StagedOutput out_;
   PngOptions::Packing packing_;
   std::optional<Image> image_;
   bool alpha_ = false;
@@ -43,8 +43,8 @@ class PngImageSink final : public FrameSink {
 
 }  // namespace
 
-SinkPtr make_png_image_sink(const std::filesystem::path& path, PngOptions::Packing packing) {
-  return std::make_unique<PngImageSink>(path, packing);
+SinkPtr make_png_image_sink(const StagedOutput& out, PngOptions::Packing packing) {
+  return std::make_unique<PngImageSink>(out, packing);
 }
 
 }  // namespace tumble::cli

@@ -14,6 +14,7 @@
 #include "progress.hpp"
 #include "tumble/camera_framing.hpp"
 #include "tumble/egl_context.hpp"
+#include "tumble/output_folder.hpp"
 #include "tumble/renderer.hpp"
 #include "tumble/run_report.hpp"
 #include "tumble/trajectory_writer.hpp"
@@ -139,90 +140,102 @@ int run_render(const RenderOptions& o, RenderSession* session) {
   // drawing it); run.json then records the camera used, so the view can be pinned.
   scene.camera = frame_camera(scene, def);
 
-  const fs::path dir = output_dir(o.common, scene);
-  if (o.png) make_output_dir(dir / "frames");
-  // A sweep renders all its jobs in one context; a lone render makes its own.
-  std::unique_ptr<EglContext> own_gl;
-  std::unique_ptr<EglContext>& gl_slot = session ? session->gl : own_gl;
-  if (!gl_slot) gl_slot = std::make_unique<EglContext>(o.egl_device.value_or(-1));
-  const EglContext& gl = *gl_slot;
-  // A sweep's next job in the same format reuses the last one's renderer.
-  const Backdrop backdrop = o.transparent ? Backdrop::Transparent : Backdrop::Sky;
-  std::unique_ptr<Renderer> own_renderer;
-  std::unique_ptr<Renderer>& renderer_slot = session ? session->renderer : own_renderer;
-  if (!renderer_slot || !renderer_slot->reuse_for(scene, &models, backdrop)) {
-    renderer_slot.reset();  // its GL objects go before the new ones are made
-    renderer_slot = std::make_unique<Renderer>(scene, Renderer::Readback::Auto, &models, backdrop);
-  }
-  Renderer& renderer = *renderer_slot;
-  renderer.redraw_in_full(o.draw_every_frame);  // the reference: nothing reused
+  // Locked for this run; every output is staged and committed together, run.json last, so a
+  // run that fails or is stopped leaves the folder exactly as it was.
+  const std::unique_ptr<OutputFolder> outputs = open_output_folder(o.common, scene);
+  const fs::path dir = outputs->dir();
+  try {
+    // A sweep renders all its jobs in one context; a lone render makes its own.
+    std::unique_ptr<EglContext> own_gl;
+    std::unique_ptr<EglContext>& gl_slot = session ? session->gl : own_gl;
+    if (!gl_slot) gl_slot = std::make_unique<EglContext>(o.egl_device.value_or(-1));
+    const EglContext& gl = *gl_slot;
+    // A sweep's next job in the same format reuses the last one's renderer.
+    const Backdrop backdrop = o.transparent ? Backdrop::Transparent : Backdrop::Sky;
+    std::unique_ptr<Renderer> own_renderer;
+    std::unique_ptr<Renderer>& renderer_slot = session ? session->renderer : own_renderer;
+    if (!renderer_slot || !renderer_slot->reuse_for(scene, &models, backdrop)) {
+      renderer_slot.reset();  // its GL objects go before the new ones are made
+      renderer_slot =
+          std::make_unique<Renderer>(scene, Renderer::Readback::Auto, &models, backdrop);
+    }
+    Renderer& renderer = *renderer_slot;
+    renderer.redraw_in_full(o.draw_every_frame);  // the reference: nothing reused
 
-  // The sinks: every clip frame to the clip sinks; each still and the strobe is a picture.
-  const long clip_frames = want_clip ? frames : 0;
-  FramePipeline pipeline(def, renderer, fps, clip_frames);
-  pipeline.draw_every_frame(o.draw_every_frame);
-  if (want_mp4)
-    pipeline.add_clip_sink(make_mp4_sink(dir / "clip.mp4", {width, height, fps, o.crf, o.encoder},
-                                         scene.render.background));
-  if (o.png) pipeline.add_clip_sink(make_png_frames_sink(dir / "frames"));
-  if (o.gif)
-    pipeline.add_clip_sink(
-        make_gif_sink(dir / "clip.gif", width, height, fps, clip_frames, o.transparent));
-  if (o.webp)
-    pipeline.add_clip_sink(make_webp_sink(dir / "clip.webp", width, height, fps, o.transparent));
-  std::vector<double> stills = o.stills;
-  for (double& t : stills) t += 0.0;  // -0 names the same still as 0
-  std::sort(stills.begin(), stills.end());
-  stills.erase(std::unique(stills.begin(), stills.end()), stills.end());
-  for (const double t : stills)
-    pipeline.add_picture(
-        still_picture(t, make_png_image_sink(dir / ("still_" + format_double(t) + ".png"))));
-  FigureFacts figures;
-  figures.transparent = o.transparent;
-  if (o.strobe) {
-    // A figure written once: the smaller PNG is worth its ~20 ms.
-    Picture strobe =
-        strobe_picture(*o.strobe, strobe_from, strobe_to,
-                       make_png_image_sink(dir / "strobe.png", PngOptions::Packing::Small));
-    figures.strobe_times_s = strobe.times_s;
-    figures.strobe_opacities = strobe.opacities;
-    pipeline.add_picture(std::move(strobe));
-  }
+    // The sinks: every clip frame to the clip sinks; each still and the strobe is a picture.
+    const long clip_frames = want_clip ? frames : 0;
+    FramePipeline pipeline(def, renderer, fps, clip_frames);
+    pipeline.draw_every_frame(o.draw_every_frame);
+    if (want_mp4)
+      pipeline.add_clip_sink(make_mp4_sink(outputs->file("clip.mp4"),
+                                           {width, height, fps, o.crf, o.encoder},
+                                           scene.render.background));
+    if (o.png)
+      pipeline.add_clip_sink(make_png_frames_sink(outputs->folder("frames", is_frame_file_name)));
+    if (o.gif)
+      pipeline.add_clip_sink(
+          make_gif_sink(outputs->file("clip.gif"), width, height, fps, clip_frames, o.transparent));
+    if (o.webp)
+      pipeline.add_clip_sink(
+          make_webp_sink(outputs->file("clip.webp"), width, height, fps, o.transparent));
+    std::vector<double> stills = o.stills;
+    for (double& t : stills) t += 0.0;  // -0 names the same still as 0
+    std::sort(stills.begin(), stills.end());
+    stills.erase(std::unique(stills.begin(), stills.end()), stills.end());
+    for (const double t : stills)
+      pipeline.add_picture(still_picture(
+          t, make_png_image_sink(outputs->file("still_" + format_double(t) + ".png"))));
+    FigureFacts figures;
+    figures.transparent = o.transparent;
+    if (o.strobe) {
+      // A figure written once: the smaller PNG is worth its ~20 ms.
+      Picture strobe = strobe_picture(
+          *o.strobe, strobe_from, strobe_to,
+          make_png_image_sink(outputs->file("strobe.png"), PngOptions::Packing::Small));
+      figures.strobe_times_s = strobe.times_s;
+      figures.strobe_opacities = strobe.opacities;
+      pipeline.add_picture(std::move(strobe));
+    }
 
-  Progress progress(!o.common.quiet, clip_frames, "render", "frames");
-  pipeline.run(progress);
+    Progress progress(!o.common.quiet, clip_frames, "render", "frames");
+    pipeline.run(progress);
 
-  RunReport report;
-  report.command = "render";
-  report.scene = &scene;
-  report.steps = step_count_for(duration, def.dt_s);  // the last may be taken part-way
-  report.samples = clip_frames;
-  report.frames = clip_frames;
-  report.sample_rate_hz = fps;
-  report.gl_vendor = gl.info().gl_vendor;
-  report.gl_renderer =
-      gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " + gl.info().platform + ")";
-  report.antialias_used =
-      renderer.antialias() == Antialias::Msaa
-          ? "msaa " + std::to_string(renderer.msaa_samples()) + "x"
-          : std::string(kAntialiasNames[static_cast<int>(renderer.antialias())]);
-  if (o.transparent || o.strobe || o.gif || o.webp) report.figures = figures;
-  pipeline.report(report);
-  report.energy_start_J = World(def).total_energy();
-  report.energy_end_J = pipeline.sampler().at(duration).total_energy();
-  report.contact = pipeline.world().contact_stats();
-  report.world = &pipeline.world();
-  report.models = &models;
-  report.times.total_s = seconds_since(start);
-  write_run_report(dir / "run.json", report);
-  if (!o.common.quiet) {
-    const std::string stills_text =
-        stills.empty() ? "" : " and " + std::to_string(stills.size()) + " still(s)";
-    std::printf("tumble: rendered %ld frames (%dx%d, %d fps)%s on %s in %.2f s into %s\n",
-                clip_frames, width, height, fps, stills_text.c_str(), gl.info().gl_renderer.c_str(),
-                report.times.total_s, dir.c_str());
+    RunReport report;
+    report.command = "render";
+    report.scene = &scene;
+    report.steps = step_count_for(duration, def.dt_s);  // the last may be taken part-way
+    report.samples = clip_frames;
+    report.frames = clip_frames;
+    report.sample_rate_hz = fps;
+    report.gl_vendor = gl.info().gl_vendor;
+    report.gl_renderer =
+        gl.info().gl_renderer + " (" + gl.info().gl_version + ", EGL " + gl.info().platform + ")";
+    report.antialias_used =
+        renderer.antialias() == Antialias::Msaa
+            ? "msaa " + std::to_string(renderer.msaa_samples()) + "x"
+            : std::string(kAntialiasNames[static_cast<int>(renderer.antialias())]);
+    if (o.transparent || o.strobe || o.gif || o.webp) report.figures = figures;
+    pipeline.report(report);
+    report.energy_start_J = World(def).total_energy();
+    report.energy_end_J = pipeline.sampler().at(duration).total_energy();
+    report.contact = pipeline.world().contact_stats();
+    report.world = &pipeline.world();
+    report.models = &models;
+    report.times.total_s = seconds_since(start);
+    report.staged_in = outputs.get();
+    write_run_report(outputs->file("run.json").staged, report);
+    outputs->commit();
+    if (!o.common.quiet) {
+      const std::string stills_text =
+          stills.empty() ? "" : " and " + std::to_string(stills.size()) + " still(s)";
+      std::printf("tumble: rendered %ld frames (%dx%d, %d fps)%s on %s in %.2f s into %s\n",
+                  clip_frames, width, height, fps, stills_text.c_str(),
+                  gl.info().gl_renderer.c_str(), report.times.total_s, dir.c_str());
+    }
+    return report_diagnostics(o.common, pipeline.world().diagnostics());
+  } catch (const Error& e) {
+    throw outputs->in_final_names(e);
   }
-  return report_diagnostics(o.common, pipeline.world().diagnostics());
 }
 
 }  // namespace tumble::cli

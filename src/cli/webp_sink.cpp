@@ -11,8 +11,8 @@ namespace {
 
 class WebpSink final : public AnimationSink<WebpWriter> {
  public:
-  WebpSink(const std::filesystem::path& path, const WebpSettings& settings)
-      : AnimationSink(path, settings), fps_(settings.fps) {}
+  WebpSink(const StagedOutput& out, const WebpSettings& settings)
+      : AnimationSink(out, settings), fps_(settings.fps) {}
 
   void report(RunReport& r, double seconds) const override {
     if (!written_) return;
@@ -42,9 +42,8 @@ class WebpSink final : public AnimationSink<WebpWriter> {
 
 }  // namespace
 
-SinkPtr make_webp_sink(const std::filesystem::path& path, int width, int height, int fps,
-                       bool alpha) {
-  return std::make_unique<WebpSink>(path, WebpSettings{width, height, fps, alpha});
+SinkPtr make_webp_sink(const StagedOutput& out, int width, int height, int fps, bool alpha) {
+  return std::make_unique<WebpSink>(out, WebpSettings{width, height, fps, alpha});
 }
 
 }  // namespace tumble::cli

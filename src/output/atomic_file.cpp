@@ -9,56 +9,65 @@
 namespace tumble {
 namespace {
 
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& why) {
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const fs::path& path, const std::string& why) {
   throw Error(ErrorKind::Environment, "cannot write \"" + path.string() + "\": " + why);
 }
 
-std::string partial_name(const std::filesystem::path& final_path) {
-  std::string name = ".";
-  name.append(final_path.filename().string());
-  name.append(".partial");
-  return name;
+// A regular target is staged beside what it names, so that the rename never crosses file
+// systems; a device or FIFO gets its bytes by copying, so the temporary folder serves (the
+// device's own folder, /dev, is no place for files and often not writable).
+fs::path staging_folder(const OutputTarget& t) {
+  if (t.kind == OutputTarget::Kind::WriteThrough) return fs::temp_directory_path();
+  return t.resolved.has_parent_path() ? t.resolved.parent_path() : fs::path(".");
 }
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::filesystem::path final_path)
-    : final_(std::move(final_path)),
-      // Beside the final file, so rename() never crosses file systems; a dot-name keeps a
-      // half-written file out of globs like frames/*.png.
-      temporary_(final_.parent_path() / partial_name(final_)) {
-  out_.open(temporary_, std::ios::binary | std::ios::trunc);
-  if (!out_) fail(final_, std::strerror(errno));
+StagedFile::StagedFile(fs::path final_path)
+    : target_(output_target(final_path)),
+      temporary_(make_unique_temporary_file(staging_folder(target_),
+                                            target_.resolved.filename().string())) {}
+
+StagedFile::~StagedFile() {
+  if (committed_) return;
+  std::error_code ignored;
+  fs::remove(temporary_, ignored);
+}
+
+void StagedFile::commit() {
+  place_output(temporary_, target_);
+  committed_ = true;
+}
+
+AtomicFile::AtomicFile(fs::path final_path) : staged_(std::move(final_path)) {
+  out_.open(staged_.temporary_path(), std::ios::binary | std::ios::trunc);
+  if (!out_) fail(staged_.path(), std::strerror(errno));
 }
 
 AtomicFile::~AtomicFile() {
-  if (committed_) return;
   out_.close();
-  std::error_code ignored;
-  std::filesystem::remove(temporary_, ignored);
 }
 
 void AtomicFile::commit() {
   out_.flush();
   const bool ok = static_cast<bool>(out_);
   out_.close();
-  if (!ok || out_.fail()) fail(final_, "write failed (disk full?)");
-  std::error_code ec;
-  std::filesystem::rename(temporary_, final_, ec);
-  if (ec) fail(final_, ec.message());
-  committed_ = true;
+  if (!ok || out_.fail()) fail(staged_.path(), "write failed (disk full?)");
+  staged_.commit();
 }
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
+void write_file_atomically(const fs::path& path, std::string_view bytes) {
   AtomicFile file(path);
   file.write(bytes);
   file.commit();
 }
 
-void make_output_dir(const std::filesystem::path& dir) {
+void make_output_dir(const fs::path& dir) {
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir))
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
     throw Error(ErrorKind::Environment, "cannot create output folder \"" + dir.string() + "\": " +
                                             (ec ? ec.message() : std::string("not a folder")));
 }

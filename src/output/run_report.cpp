@@ -147,7 +147,9 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
   if (r.figures) j["figures"] = figures_json(*r.figures);
   ordered_json outputs = ordered_json::array();
   for (const auto& p : r.outputs)
-    outputs.push_back({{"path", p.string()}, {"sha256", sha256_file_hex(p)}});
+    outputs.push_back(
+        {{"path", p.string()},
+         {"sha256", sha256_file_hex(r.staged_in ? r.staged_in->staged_path_of(p) : p)}});
   j["outputs"] = outputs;
   ordered_json bodies = ordered_json::array();
   if (r.world)

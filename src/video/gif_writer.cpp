@@ -10,7 +10,7 @@
 #include "ffmpeg_handles.hpp"
 #include "filter_graph.hpp"
 #include "frame_store.hpp"
-#include "partial_file.hpp"
+#include "tumble/atomic_file.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -87,7 +87,6 @@ struct GifWriter::Impl {
       : settings(s),
         timing(GifTiming::for_clip(s.fps, s.clip_frames)),
         final_path(path),
-        temporary_path(partial_path_for(path)),
         palette_pass(palettegen_description(s.alpha),
                      {{AV_PIX_FMT_RGB32, s.width, s.height, AVRational{1, 100}}}),
         frame(av_frame_alloc()) {
@@ -136,7 +135,7 @@ struct GifWriter::Impl {
 
   GifSettings settings;
   GifTiming timing;
-  fs::path final_path, temporary_path;
+  fs::path final_path;
   FilterGraph palette_pass;
   FramePtr frame;  // RGB32 scratch for the palette pass and the second pass
   FrameStore store;
@@ -152,8 +151,8 @@ void GifWriter::Impl::finish() {
   if (!palette_pass.pull(palette.get())) fail("palettegen gave no palette", AVERROR_BUG);
 
   // The file is opened only now: a run that fails before its end leaves no trace of it.
-  RemoveUnlessReleased temporary_file(temporary_path);
-  const std::string url = "file:" + temporary_path.string();
+  StagedFile staged(final_path);
+  const std::string url = "file:" + staged.temporary_path().string();
   AVFormatContext* raw_muxer = nullptr;
   int result = avformat_alloc_output_context2(&raw_muxer, nullptr, "gif", url.c_str());
   if (result < 0) fail("GIF muxer", result);
@@ -215,8 +214,7 @@ void GifWriter::Impl::finish() {
   if (result < 0) fail("GIF trailer", result);
   result = avio_closep(&muxer->pb);
   if (result < 0) fail("close failed (disk full?)", result);
-  rename_into_place(temporary_path, final_path);
-  temporary_file.release();
+  staged.commit();
   finished = true;
 }
 

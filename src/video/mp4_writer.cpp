@@ -10,7 +10,7 @@ extern "C" {
 
 #include "ffmpeg_handles.hpp"
 #include "h264_encoder.hpp"
-#include "partial_file.hpp"
+#include "tumble/atomic_file.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -54,9 +54,8 @@ struct Mp4Writer::Impl {
 
   Mp4Settings settings;
   fs::path final_path;
-  fs::path temporary_path;
-  // Declared before the muxer, so destroyed after it has closed the file.
-  RemoveUnlessReleased temporary_file;
+  // Declared before the muxer, so its temporary is removed after the muxer has closed it.
+  StagedFile staged;
   FormatContextPtr muxer;
   H264Encoder encoder;
   std::string encoder_name;
@@ -71,14 +70,11 @@ struct Mp4Writer::Impl {
 };
 
 Mp4Writer::Impl::Impl(const fs::path& path, const Mp4Settings& s)
-    : settings(s),
-      final_path(path),
-      temporary_path(partial_path_for(path)),
-      temporary_file(temporary_path) {
+    : settings(s), final_path(path), staged(path) {
   check(settings);
   // The "file:" protocol prefix keeps a ':' in a folder name from being read as a protocol. The
   // muxer reopens this URL in av_write_trailer to move the moov box to the front (+faststart).
-  const std::string url = "file:" + temporary_path.string();
+  const std::string url = "file:" + staged.temporary_path().string();
   AVFormatContext* raw_muxer = nullptr;
   int result = avformat_alloc_output_context2(&raw_muxer, nullptr, "mp4", url.c_str());
   if (result < 0) fail_writing("MP4 muxer", result);
@@ -223,8 +219,7 @@ void Mp4Writer::finish() {
   if (result < 0) m.fail_writing("MP4 trailer", result);
   result = avio_closep(&m.muxer->pb);
   if (result < 0) m.fail_writing("close failed (disk full?)", result);
-  rename_into_place(m.temporary_path, m.final_path);
-  m.temporary_file.release();
+  m.staged.commit();
   m.finished = true;
 }
 

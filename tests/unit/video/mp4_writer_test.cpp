@@ -155,7 +155,10 @@ TEST(Mp4Writer, ClipAppearsOnlyAfterFinish) {
   Mp4Writer writer(file, small_settings());
   for (int k = 0; k < kFrames; ++k) writer.add_frame(moving_frame(kWidth, kHeight, k));
   EXPECT_FALSE(fs::exists(file));
-  EXPECT_TRUE(fs::exists(dir / ".clip.mp4.partial"));
+  // Its temporary beside it, named uniquely for this writer (.clip.mp4.XXXXXX.partial).
+  const auto temporary = fs::directory_iterator(dir)->path().filename().string();
+  EXPECT_TRUE(temporary.starts_with(".clip.mp4.") && temporary.ends_with(".partial")) << temporary;
+  EXPECT_EQ(entries(dir), 1);
   writer.finish();
   EXPECT_TRUE(fs::exists(file));
   EXPECT_EQ(entries(dir), 1);  // the temporary is gone
