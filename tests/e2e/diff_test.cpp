@@ -279,6 +279,7 @@ TEST(DiffImage, DiffOutIsMagentaWhereChangedAndGreyElsewhere) {
   const TestDir dir;
   write_png(dir / "a.png", picture());
   write_png(dir / "b.png", changed(3, 2, 10));
+  fs::create_directory(dir / "out");  // an explicit file's folder must exist (docs/outputs.md)
   const RunResult r =
       run_tumble({"diff", "a.png", "b.png", "--diff-out", "out/diff.png"}, dir.path());
   EXPECT_EQ(r.exit_code, 1) << describe(r);
