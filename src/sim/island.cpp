@@ -499,6 +499,36 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
     }
     vn = speeds();
   }
+  // Passes that do not end: a light body between a heavy one and the floor trades impulses with
+  // both ~ sqrt(M/m) times (the billiard-ball count), 10^3 passes at 1000:1. After the pass cap
+  // the rest is resolved at once, as Poisson's law over every contact: the inelastic LCP's
+  // compression impulse J (after it no contact approaches), then e J again with the smallest
+  // restitution e among them. Its energy change is -(1 - e²)/2 · JᵀAJ <= 0 (J's
+  // complementarity gives J·v = -JᵀAJ), so it never gains energy; a last inelastic projection
+  // stops any contact that the restitution impulse turned into an approach.
+  if (vn.minCoeff() < -eps) {
+    Eigen::VectorXd j;
+    std::vector<char> active;
+    solve_lcp_pivoting(A, vn, j, active, true);
+    double e = inelastic ? 0.0 : 1.0;
+    for (int i = 0; i < n; ++i)
+      if (j(i) > 0.0 && vn(i) < -rest_speed)
+        e = std::min(e, v.island->pairs[contacts[i].pair].restitution);
+      else if (j(i) > 0.0)
+        e = 0.0;
+    for (int i = 0; i < n; ++i) {
+      impulses[i] += (1.0 + e) * j(i);
+      apply(s, f, i, (1.0 + e) * j(i) * f.frame[i].n);
+    }
+    vn = speeds();
+    if (vn.minCoeff() < -eps) {
+      solve_lcp_pivoting(A, vn, j, active, true);
+      for (int i = 0; i < n; ++i) {
+        impulses[i] += j(i);
+        apply(s, f, i, j(i) * f.frame[i].n);
+      }
+    }
+  }
   bool friction = false;
   for (int i = 0; i < n; ++i) friction |= v.island->pairs[contacts[i].pair].friction > 0.0;
   if (friction) {

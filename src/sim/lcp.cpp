@@ -92,8 +92,11 @@ void projected_gauss_seidel(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
 
 }  // namespace
 
-bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
-                        std::vector<char>& active) {
+namespace {
+
+// Dantzig pivoting; false when its pivot budget runs out or no step is bounded.
+bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+           std::vector<char>& active) {
   const int n = static_cast<int>(b.size());
   f = Eigen::VectorXd::Zero(n);
   active.resize(static_cast<std::size_t>(n), 0);
@@ -185,6 +188,26 @@ bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eige
     active[i] = clamped[i];
   }
   return true;
+}
+
+}  // namespace
+
+bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+                        std::vector<char>& active, bool ridge_on_stall) {
+  const bool solved = pivot(A, b, f, active);
+  if (solved || !ridge_on_stall) return solved;
+  // Contact matrices are only semidefinite: four coplanar points of a face, or a light body
+  // pressed between a heavy one and the floor, give dependent rows, where pivoting can stall
+  // (and its least-squares steps choose among many force distributions by round-off, so a
+  // symmetric stack would get an asymmetric push). Then a diagonal of 1e-10 of the largest one
+  // makes the matrix definite: the solution is unique (for a symmetric pose, symmetric) and
+  // Dantzig's method reaches it; it moves w = A f + b by 1e-10 |A| f, a tenth of the
+  // tolerance. Only on a stall, and where the caller asks (impacts: a push must not
+  // depend on round-off), so that every regular solve stays exact to round-off.
+  Eigen::MatrixXd ridged = A;
+  ridged.diagonal().array() += 1e-10 * std::max(A.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+  std::fill(active.begin(), active.end(), 0);
+  return pivot(ridged, b, f, active);
 }
 
 }  // namespace tumble

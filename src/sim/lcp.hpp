@@ -27,8 +27,9 @@ LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b);
 /// Starts from `active` (the clamped set of the last solve, warm start; may be empty) and
 /// writes the final clamped set back. Returns false when it could not finish within its pivot
 /// budget or A (with sliding friction, not symmetric) has no solution it can reach; `f` is then
-/// the projected Gauss–Seidel answer, and the caller reports it.
+/// the projected Gauss–Seidel answer, and the caller reports it. With `ridge_on_stall`, a
+/// stalled solve is first retried with a diagonal of 1e-10 of A's largest added (see lcp.cpp).
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
-                        std::vector<char>& active);
+                        std::vector<char>& active, bool ridge_on_stall = false);
 
 }  // namespace tumble

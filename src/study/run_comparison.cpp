@@ -3,14 +3,20 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 namespace tumble::study {
 namespace {
 
-std::vector<double> bounce_times(const RunRecord& r, int body, double min_speed) {
+// What an impact was between: its two sides in ascending order (the floor, -1, first).
+std::pair<int, int> impact_pair(const ImpactEvent& e) {
+  return {std::min(e.body, e.other), std::max(e.body, e.other)};
+}
+
+std::vector<double> bounce_times(const RunRecord& r, std::pair<int, int> pair, double min_speed) {
   std::vector<double> times;
   for (const ImpactEvent& e : r.events)
-    if (e.body == body && e.approach_speed_mps > min_speed) times.push_back(e.t_s);
+    if (impact_pair(e) == pair && e.approach_speed_mps > min_speed) times.push_back(e.t_s);
   return times;
 }
 
@@ -39,12 +45,23 @@ RunErrors compare_runs(const RunRecord& run, const RunRecord& reference, double 
         out.orientation_rad = std::max(out.orientation_rad, angle_between(a.q, b.q));
     }
   }
-  const std::size_t bodies = run.rest_speed_mps.size();
-  for (std::size_t i = 0; i < bodies; ++i) {
-    const double threshold = std::max(run.rest_speed_mps[i], reference.rest_speed_mps[i]);
-    const std::vector<double> theirs = bounce_times(reference, static_cast<int>(i), threshold);
-    const BounceMatch m =
-        match_bounces(bounce_times(run, static_cast<int>(i), threshold), theirs, gap_s);
+  // Impacts are matched pair by pair (a body and the floor, or two bodies): a run that has a
+  // box hit its neighbour where the reference has it hit the floor misses one and adds one.
+  // Pairs in ascending order, so the sums and the largest error do not depend on event order.
+  std::vector<std::pair<int, int>> pairs;
+  for (const RunRecord* r : {&run, &reference})
+    for (const ImpactEvent& e : r->events) pairs.push_back(impact_pair(e));
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  auto rest_speed = [&](int body) {
+    if (body < 0) return 0.0;
+    const auto i = static_cast<std::size_t>(body);
+    return std::max(run.rest_speed_mps[i], reference.rest_speed_mps[i]);
+  };
+  for (const std::pair<int, int>& pair : pairs) {
+    const double threshold = std::max(rest_speed(pair.first), rest_speed(pair.second));
+    const std::vector<double> theirs = bounce_times(reference, pair, threshold);
+    const BounceMatch m = match_bounces(bounce_times(run, pair, threshold), theirs, gap_s);
     out.bounces += static_cast<int>(theirs.size());
     out.missed += m.missed;
     out.extra += m.extra;

@@ -104,5 +104,27 @@ TEST(BounceMatch, OnlyBouncesFasterThanBothRestSpeedsCount) {
   EXPECT_NEAR(*e.impact_time_s, 0.01, 1e-15);
 }
 
+TEST(BounceMatch, ImpactsAreMatchedPairByPair) {
+  // Two bodies. The reference has body 1 hit body 0 at 0.5 s, then the floor at 0.8 s; the run
+  // has body 1 hit the floor at 0.5 s instead (it missed its neighbour), then the floor at 0.8 s.
+  // Matched per body the times would line up; matched per pair, the run misses the body–body
+  // impact and adds a floor one.
+  RunRecord ref = record({body(Vec3::Zero())});
+  ref.rest_speed_mps = {0.01, 0.01};
+  RunRecord run = ref;
+  ref.events = {{0.5, 1, 2.0, 0}, {0.8, 1, 2.0, kFloorBody}};
+  run.events = {{0.5, 1, 2.0, kFloorBody}, {0.8, 1, 2.0, kFloorBody}};
+  const RunErrors e = compare_runs(run, ref, 0.1);
+  EXPECT_EQ(e.bounces, 2);
+  EXPECT_EQ(e.missed, 1);
+  EXPECT_EQ(e.extra, 1);
+  // Either side may record a body–body impact: (body 0, other 1) is the same pair as (1, 0).
+  run.events = {{0.5, 0, 2.0, 1}, {0.8, 1, 2.0, kFloorBody}};
+  const RunErrors same = compare_runs(run, ref, 0.1);
+  EXPECT_EQ(same.missed, 0);
+  EXPECT_EQ(same.extra, 0);
+  EXPECT_NEAR(*same.impact_time_s, 0.0, 1e-15);
+}
+
 }  // namespace
 }  // namespace tumble::study
