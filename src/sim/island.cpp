@@ -262,6 +262,14 @@ Eigen::VectorXd IslandDynamics::solve(const IslandState& s, const std::vector<Fr
   Eigen::VectorXd force;
   std::vector<char> local;
   std::vector<char>& active = active_ ? *active_ : local;
+  // With sliding friction A is not semidefinite, and the LCP may have several solutions: a box
+  // sliding flat on its face is held by all four corners, or (as Dantzig's pivoting may find
+  // from f = 0) by its two leading ones with the trailing ones accelerating away, a lift that
+  // then rocks it on in micro-impacts. The contacts held are those that touch and do not
+  // separate, so the first guess (where there is no last clamped set of this size) is all of
+  // them clamped; it is kept when its forces are all >= 0 (a complementary solution).
+  if (active.size() != static_cast<std::size_t>(b.size()))
+    active.assign(static_cast<std::size_t>(b.size()), 1);
   if (!solve_lcp_pivoting(A, b, force, active) && failed_) *failed_ = true;
   return force;
 }
@@ -488,6 +496,35 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
       }
       return j;
     };
+    double approach = 0.0;
+    for (int i : set) approach = std::max(approach, -vn(i));
+    if (approach <= rest_speed) {
+      // Slower than the rest speed: the Zeno limit. A box rocking on a face (a sliding one
+      // is rocked by its friction torque) meets it edge after edge in ever shorter, ever
+      // slower inelastic impacts, each lifting the other edge (Housner's rocking block); their
+      // sum leaves every touching point of the pair at rest along the normal. That end state
+      // at once: the impulses that zero the normal speed of every touching point of the
+      // approaching pairs that is not leaving faster than the rest speed, least squares
+      // (minimum norm) over dependent points. It is a projection in the kinetic metric, so it
+      // never gains energy.
+      std::vector<int> plastic;
+      for (int i : set)
+        if (vn(i) <= rest_speed) plastic.push_back(i);
+      const int q = static_cast<int>(plastic.size());
+      Eigen::MatrixXd Ap(q, q);
+      Eigen::VectorXd rhs(q);
+      for (int r = 0; r < q; ++r) {
+        rhs(r) = -vn(plastic[r]);
+        for (int c = 0; c < q; ++c) Ap(r, c) = A(plastic[r], plastic[c]);
+      }
+      const Eigen::VectorXd j = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Ap).solve(rhs);
+      for (int r = 0; r < q; ++r) {
+        impulses[plastic[r]] += j(r);
+        apply(s, f, plastic[r], j(r) * f.frame[plastic[r]].n);
+      }
+      vn = speeds();
+      continue;
+    }
     const std::vector<double> saved = impulses;
     solve(!inelastic);
     // Simultaneous Newton restitution can return more energy than came in; the inelastic
@@ -579,6 +616,57 @@ bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>
     u(2 * i + 1) = mu[i] > 0.0 ? dv.dot(t[2 * i + 1]) : 0.0;
   }
   if (u.cwiseAbs().maxCoeff() == 0.0) return true;
+  bool solvable = false;  // the joint sticking impulse exists (it may still leave the cones)
+  // Sticking, jointly with the normal rows of the contacts that press: a tangential impulse at
+  // a box's base also turns it (a unit impulse at its four corners changes their slip 2.5
+  // times as much as the centre's velocity), which the pressing contacts do not allow: their
+  // normal impulses change with it so that their normal speeds stay as they are. Rows per
+  // contact: its normal, then its two tangents; least squares, minimum norm (dependent
+  // points), a projection in the kinetic metric, so it never gains energy.
+  {
+    Frames f3;
+    std::vector<Vec3> dir;
+    for (int i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) {
+        f3.frame.push_back(f.frame[i]);
+        f3.a.push_back(f.a[i]);
+        f3.b.push_back(f.b[i]);
+        if (a > 0) {
+          f3.frame.back().n = t[2 * i + a - 1];
+          f3.a.back().point_lever = f.a[i].lever;
+          f3.b.back().point_lever = f.b[i].lever;
+        }
+        dir.push_back(f3.frame.back().n);
+      }
+    Eigen::MatrixXd M = contact_matrix(f3, m, dir);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(3 * n);
+    for (int i = 0; i < n; ++i) {
+      rhs(3 * i + 1) = -u(2 * i);
+      rhs(3 * i + 2) = -u(2 * i + 1);
+      for (int a = 0; a < 3; ++a) {
+        const bool unused = a == 0 ? !(normal_impulse[i] > 0.0) : mu[i] == 0.0;
+        if (!unused) continue;
+        const int r = 3 * i + a;
+        M.row(r).setZero();
+        M.col(r).setZero();
+        M(r, r) = 1.0;
+        rhs(r) = 0.0;
+      }
+    }
+    const Eigen::VectorXd x = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(M).solve(rhs);
+    solvable = (M * x - rhs).norm() <= 1e-9 * std::max(rhs.norm(), 1e-300);
+    bool inside = solvable;
+    for (int i = 0; i < n && inside; ++i) {
+      const double normal = normal_impulse[i] + x(3 * i);
+      inside = normal >= 0.0 && x.segment<2>(3 * i + 1).norm() <= mu[i] * normal * (1.0 + 1e-9);
+    }
+    if (inside) {
+      for (int i = 0; i < n; ++i)
+        apply(s, f, i,
+              x(3 * i) * f.frame[i].n + x(3 * i + 1) * t[2 * i] + x(3 * i + 2) * t[2 * i + 1]);
+      return true;
+    }
+  }
   // K maps tangential impulses to changes of the tangential slips (rows: tangents of every
   // contact; the frictionless ones have rows and columns too, with zero impulse).
   Frames f2 = f;
@@ -604,7 +692,9 @@ bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>
         K(2 * i + a, 2 * i + a) = 1.0;
       }
   Eigen::VectorXd imp = -Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(K).solve(u);
-  bool sticks = true;
+  // Where the joint impulse exists, it left a cone (above): the contacts slide. Otherwise (no
+  // pressing contact to turn against) the tangential impulses alone decide.
+  bool sticks = !solvable;
   for (int i = 0; i < n; ++i)
     if (imp.segment<2>(2 * i).norm() > mu[i] * normal_impulse[i] * (1.0 + 1e-9)) sticks = false;
   if (!sticks) {

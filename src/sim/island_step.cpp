@@ -418,7 +418,9 @@ void World::advance_island(const Island& island, double h) {
         const RigidBody& b = view.member(side.index);
         const Mat3 R = rotation_of(s[side.index], def_.rotation);
         const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * s[side.index].L;
-        return std::pair(Vec3(s[side.index].P * b.inverse_mass()), w.norm() * b.bounding_radius());
+        // Turning a ball or a point about its centre does not move its surface.
+        const double reach = b.is_sphere() || b.is_particle() ? 0.0 : b.bounding_radius();
+        return std::pair(Vec3(s[side.index].P * b.inverse_mass()), w.norm() * reach);
       };
       std::vector<double> bound(watched.size());
       for (std::size_t w = 0; w < watched.size(); ++w) {

@@ -96,6 +96,26 @@ TEST(Friction, NoCreepOnARampShallowerThanAtanMu) {
   EXPECT_LT((w.bodies()[1].state.x - start).norm(), 1e-9);
 }
 
+TEST(Friction, SlidesDownARampSteeperThanAtanMuAtGTimesSinMinusMuCos) {
+  // Set on the ramp at rest, the box slides at once (static friction cannot hold it: the joint
+  // sticking impulse leaves the cone) and its acceleration along the slope is
+  // g (sin θ − μ cos θ) = 1.609 m/s² at 35°, μ = 0.5. Kinetic friction and the normal force are
+  // constant, so rk4 follows it to round-off (1e-12 of the speed reached); flat on the slope,
+  // held by all four corners: no lift, no rocking, no impact.
+  const double th = radians(35.0), mu = 0.5;
+  World w = ramp(35.0, mu);
+  const Vec3 down(-std::cos(th), -std::sin(th), 0), n(-std::sin(th), std::cos(th), 0);
+  const Vec3 start = w.bodies()[1].state.x;
+  const double a = g * (std::sin(th) - mu * std::cos(th));
+  while (w.time() < 0.5 - 1e-12) w.step();
+  const RigidBody& b = w.bodies()[1];
+  EXPECT_NEAR(b.velocity().dot(down), a * 0.5, 1e-12);
+  EXPECT_NEAR((b.state.x - start).dot(down), 0.5 * a * 0.25, 1e-12);
+  EXPECT_NEAR((b.state.x - start).dot(n), 0.0, 1e-12);
+  EXPECT_LT(b.angular_velocity().norm(), 1e-12);
+  EXPECT_EQ(w.contact_stats().impacts, 0);
+}
+
 TEST(Stack, HeavyBoxOnALightOneDoesNotSink) {
   // 1000 kg set on 1 kg on the floor: held by exact contact forces, the light box is not pressed
   // in. Every box within the touch tolerance (1e-6 of the size) of where it started over 10 s.
