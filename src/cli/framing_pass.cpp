@@ -65,7 +65,9 @@ FramingPass framing_pass(const Scene& scene, const WorldDef& def,
   World world(def);
   Sampler sampler(world);
   std::vector<Vec3> points;
-  bool keeping = true;
+  // A budget of 0 keeps nothing and hands on nothing: the drawing pass simulates afresh, as a
+  // render did before the pass kept anything (the reference the tests compare with).
+  bool keeping = budget_bytes > 0;
   // The next kept world's size, guessed from the last one (the first: the world at the start):
   // a world that would not fit is not sampled for keeping, so the stepping world can still be
   // handed on from just before it.

@@ -52,7 +52,8 @@ std::size_t world_bytes(const World& world);
 
 /// Simulates `def` once, sampling every frame time k / fps and the end: frames the camera on
 /// them exactly as frame_camera() does, and keeps the world at each of `keep_times_s` (sorted;
-/// frame times, exposure times, the end) while the kept copies fit in `budget_bytes`.
+/// frame times, exposure times, the end) while the kept copies fit in `budget_bytes` (0: keeps
+/// nothing and hands on no resume world: the drawing pass simulates afresh).
 /// `progress` counts the samples.
 FramingPass framing_pass(const Scene& scene, const WorldDef& def,
                          const std::vector<double>& keep_times_s, std::size_t budget_bytes,

@@ -121,7 +121,10 @@ class JobChecker {
 template <class F>
 void for_each_job(const Plan& plan, const sweep::Shard& shard, F&& f) {
   const std::size_t count = plan.job_count();
-  for (std::size_t j = shard.index; j < count; j += shard.count) f(sweep::make_job(plan, j));
+  for (std::size_t j = shard.index; j < count; j += shard.count) {
+    throw_if_interrupted();  // a long list or check stops at a signal like a run
+    f(sweep::make_job(plan, j));
+  }
 }
 
 sweep::Shard choose_shard(const SweepOptions& o) {

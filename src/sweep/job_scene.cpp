@@ -233,15 +233,8 @@ void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) 
 
 void check_plan_values(const Plan& plan, const SceneCheck& check) {
   const std::size_t count = plan.random_count.value_or(1);
-  // Job 0, and for each grid value the first job that has it (the other axes at their first).
-  check_job_scene(plan, make_job(plan, 0), check);
-  std::size_t stride = count;  // jobs between two values of the axis
-  for (std::size_t a = plan.grid.size(); a-- > 0;) {
-    for (std::size_t v = 1; v < plan.grid[a].values.size(); ++v)
-      check_job_scene(plan, make_job(plan, v * stride), check);
-    stride *= plan.grid[a].values.size();
-  }
-  // Each random key at the ends of its range, the other keys as job 0 has them.
+  // Each random key at the ends of its range, the other keys as job 0 has them: an end the
+  // scene rejects is the distribution's fault, said before any job's draw shows it.
   const Job first = make_job(plan, 0);
   for (std::size_t k = 0; k < plan.random.size(); ++k) {
     const std::size_t at = plan.grid.size() + k;  // keys(): grid first, then random
@@ -252,6 +245,14 @@ void check_plan_values(const Plan& plan, const SceneCheck& check) {
           "the plan's " + job.parameters[at].key->path + " at the end of its range (" + end + ")";
       check_scene(plan, job, check, "plan-check/scene.toml", who);
     }
+  }
+  // Job 0, and for each grid value the first job that has it (the other axes at their first).
+  check_job_scene(plan, first, check);
+  std::size_t stride = count;  // jobs between two values of the axis
+  for (std::size_t a = plan.grid.size(); a-- > 0;) {
+    for (std::size_t v = 1; v < plan.grid[a].values.size(); ++v)
+      check_job_scene(plan, make_job(plan, v * stride), check);
+    stride *= plan.grid[a].values.size();
   }
 }
 

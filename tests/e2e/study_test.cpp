@@ -187,7 +187,8 @@ TEST(Study, ListsAndQuiet) {
   ASSERT_EQ(csv.size(), 4u);
   EXPECT_EQ(csv[1].rfind("rk4,0.002,,", 0), 0u) << csv[1];
   EXPECT_EQ(csv[2].rfind("rk4,0.001,,", 0), 0u) << csv[2];
-  EXPECT_EQ(csv[3].rfind("adaptive,0.001,1e-06,", 0), 0u) << csv[3];
+  // adaptive's dt column: its largest step, the frame interval 1/60 s.
+  EXPECT_EQ(csv[3].rfind("adaptive,0.016666666666666666,1e-06,", 0), 0u) << csv[3];
 }
 
 TEST(Study, ADivergedRunIsARowNotAFailure) {

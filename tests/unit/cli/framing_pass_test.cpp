@@ -100,10 +100,20 @@ TEST(FramingPass, KeepsEveryWorldWithinTheDefaultBudget) {
   expect_same_run_as_from_the_start(run, std::move(pass));
 }
 
-TEST(FramingPass, ZeroBudgetKeepsNothingAndResumesFromTheStart) {
+TEST(FramingPass, ZeroBudgetKeepsNothing) {
+  // The reference: nothing kept, nothing handed on; the drawing pass simulates afresh.
   const DropRun run;
-  FramingPass pass = run.pass(0);
+  const FramingPass pass = run.pass(0);
   EXPECT_FALSE(pass.kept.complete);
+  EXPECT_TRUE(pass.kept.times_s.empty());
+  EXPECT_FALSE(pass.kept.resume.has_value());
+}
+
+TEST(FramingPass, ABudgetTooSmallForOneWorldResumesFromWhereKeepingStopped) {
+  // One byte: the first time to keep does not fit, so the stepping world is handed on from just
+  // before it (here the start: the first clip frame is t = 0).
+  const DropRun run;
+  FramingPass pass = run.pass(1);
   EXPECT_TRUE(pass.kept.times_s.empty());
   ASSERT_TRUE(pass.kept.resume.has_value());
   EXPECT_EQ(pass.kept.resume->step_count(), 0);
