@@ -38,13 +38,15 @@ std::size_t world_bytes(const World& world) {
     bytes += sizeof(RigidBody) + sizeof(ContactTolerances) + 2 * sizeof(BodyState) + 128;
     bytes += b.name().capacity() + b.vertices().capacity() * sizeof(Vec3) +
              b.edge_directions().capacity() * sizeof(Vec3);
-    for (const HullFace& f : b.faces()) bytes += sizeof(HullFace) + f.vertices.capacity() * sizeof(int);
+    for (const HullFace& f : b.faces())
+      bytes += sizeof(HullFace) + f.vertices.capacity() * sizeof(int);
   }
   const ContactStats& stats = world.contact_stats();
   bytes += stats.events.capacity() * sizeof(ImpactEvent) +
            stats.pairs.capacity() * sizeof(PairContactStats);
   for (const Diagnostic& d : world.diagnostics().list())
-    bytes += sizeof(Diagnostic) + d.code.size() + d.message.size() + d.fix.size() + d.severity.size();
+    bytes +=
+        sizeof(Diagnostic) + d.code.size() + d.message.size() + d.fix.size() + d.severity.size();
   return bytes;
 }
 
@@ -106,8 +108,7 @@ FramingPass framing_pass(const Scene& scene, const WorldDef& def,
   }
   const double aspect = double(scene.render.width) / scene.render.height;
   const CameraSettings& stated = scene.camera;
-  out.camera =
-      fit_camera(stated, points, aspect, !stated.target_given, !stated.ortho_height_given);
+  out.camera = fit_camera(stated, points, aspect, !stated.target_given, !stated.ortho_height_given);
   out.seconds = seconds_since(start);
   return out;
 }

@@ -17,8 +17,8 @@
 
 namespace tumble::cli {
 
-/// Bytes of kept worlds the framing pass may hold: 256 MiB, about 100 000 frames of one box, or
-/// the 240 frames of a 4 s clip of 2 000 boxes.
+/// Bytes of kept worlds the framing pass may hold: 256 MiB, about 110 000 samples of one box
+/// (2.3 kB each: a half-hour clip at 60 fps), or about 75 frames of 2 000 boxes.
 inline constexpr std::size_t kFramingKeepBytes = std::size_t{256} << 20;
 
 /// Worlds sampled by the framing pass for the drawing pass, in time order.

@@ -10,8 +10,8 @@
 
 #include "commands.hpp"
 #include "frame_pipeline.hpp"
-#include "framing_pass.hpp"
 #include "frame_sinks.hpp"
+#include "framing_pass.hpp"
 #include "progress.hpp"
 #include "tumble/camera_framing.hpp"
 #include "tumble/egl_context.hpp"
@@ -165,9 +165,8 @@ int run_render(const RenderOptions& o, RenderSession* session) {
     keep_times.erase(std::unique(keep_times.begin(), keep_times.end()), keep_times.end());
     Progress framing_progress(!o.common.quiet, framing_samples(scene, keep_times), "framing",
                               "samples");
-    FramingPass pass = framing_pass(scene, def, keep_times,
-                                    o.framing_keep_bytes.value_or(kFramingKeepBytes),
-                                    framing_progress);
+    FramingPass pass = framing_pass(
+        scene, def, keep_times, o.framing_keep_bytes.value_or(kFramingKeepBytes), framing_progress);
     scene.camera = pass.camera;
     kept = std::move(pass.kept);
     framing_s = pass.seconds;

@@ -33,7 +33,8 @@ void TrajectoryPlot::add(long k, double t, const World& world) {
 std::string TrajectoryPlot::svg(const std::vector<ImpactEvent>& impacts) const {
   const bool several = bodies_.size() > 1;
   std::vector<plot::VerticalMark> marks;
-  for (const ImpactMark& m : impact_marks(impacts)) marks.push_back({m.t_s, several ? m.label : ""});
+  for (const ImpactMark& m : impact_marks(impacts))
+    marks.push_back({m.t_s, several ? m.label : ""});
 
   const plot::Axis time{"time (s)", plot::Scale::Linear, 0.0, duration_s_};
   plot::Panel height;

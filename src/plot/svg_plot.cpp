@@ -338,7 +338,8 @@ std::optional<Rect> empty_legend_box(const std::vector<Point>& ink, const Rect& 
     if (empty(c)) return c;
   std::vector<Rect> places;
   for (double y = top; y + box_h <= bottom; y += kStepPx)
-    for (double x = right - box_w; x >= left; x -= kStepPx) places.push_back({x, y, x + box_w, y + box_h});
+    for (double x = right - box_w; x >= left; x -= kStepPx)
+      places.push_back({x, y, x + box_w, y + box_h});
   std::stable_sort(places.begin(), places.end(), [&](const Rect& a, const Rect& b) {
     return std::hypot(right - a.right, a.top - top) < std::hypot(right - b.right, b.top - top);
   });
@@ -520,9 +521,9 @@ void draw_panel(std::string& out, const Panel& panel, const Margins& aligned, in
       if (!legend_at) {
         const double beside = legend_rows.w + 2.0 * kGapPx;
         layout = layout_panel(panel, w - beside, h, aligned);
-        legend_at = Rect{layout.plot.right + kGapPx, layout.plot.top,
-                         layout.plot.right + kGapPx + legend_rows.w,
-                         layout.plot.top + legend_rows.h};
+        legend_at =
+            Rect{layout.plot.right + kGapPx, layout.plot.top,
+                 layout.plot.right + kGapPx + legend_rows.w, layout.plot.top + legend_rows.h};
       }
     }
   }

@@ -118,8 +118,7 @@ WorldDef make_world_def(const Scene& scene, const SceneModels& models,
   if (sim.integrator == Integrator::Adaptive) {
     // The controller chooses the step: from dt as its first trial up to the largest step (the
     // World's step), never beyond; a first trial above the largest is the largest.
-    def.dt_s =
-        adaptive_max_step_s(sim, sample_interval_s.value_or(1.0 / scene.render.fps));
+    def.dt_s = adaptive_max_step_s(sim, sample_interval_s.value_or(1.0 / scene.render.fps));
     def.first_step_s = std::min(sim.dt_s, def.dt_s);
   }
   def.integrator = sim.integrator;

@@ -164,8 +164,8 @@ namespace {
 
 // Checks `job`'s scene (named `name` in the loader's errors) with `check`; `who` says which job
 // or value it is in an error's message.
-void check_scene(const Plan& plan, const Job& job, const SceneCheck& check,
-                 const std::string& name, const std::string& who) {
+void check_scene(const Plan& plan, const Job& job, const SceneCheck& check, const std::string& name,
+                 const std::string& who) {
   const std::string text = job_scene_text(plan, job);  // its own errors point into the plan
   try {
     check(text, name);

@@ -191,9 +191,9 @@ TEST(Adaptive, MaxStepIsCheckedAndIgnoredByFixedStepIntegrators) {
   const TestDir dir;
   // Checked like every number, whatever the integrator: FILE:LINE:COLUMN of the value.
   for (const char* bad : {"max_step = 0.0", "max_step = -0.01", "max_step = \"big\""}) {
-    write_scene(dir.path(), "bad.toml",
-                replace(std::string(kDropScene), "duration = 0.5", "duration = 0.5\n" +
-                                                                        std::string(bad)));
+    write_scene(
+        dir.path(), "bad.toml",
+        replace(std::string(kDropScene), "duration = 0.5", "duration = 0.5\n" + std::string(bad)));
     const RunResult r = run_tumble({"simulate", "bad.toml", "--out", "o"}, dir.path());
     EXPECT_EQ(r.exit_code, 2) << bad << ": " << describe(r);
     EXPECT_NE(r.err.find("bad.toml:3:12: max_step in [simulation]"), std::string::npos)
@@ -216,8 +216,8 @@ TEST(Adaptive, MaxStepIsCheckedAndIgnoredByFixedStepIntegrators) {
   const nlohmann::json j = read_json(dir / "a/run.json");
   EXPECT_TRUE(j["settings"]["simulation"]["max_step_s"].is_null());
   EXPECT_FALSE(j.contains("adaptive") && !j["adaptive"].is_null());
-  const RunResult adaptive = run_tumble(
-      {"simulate", "rk4.toml", "--integrator", "adaptive", "--out", "c"}, dir.path());
+  const RunResult adaptive =
+      run_tumble({"simulate", "rk4.toml", "--integrator", "adaptive", "--out", "c"}, dir.path());
   ASSERT_EQ(adaptive.exit_code, 0) << describe(adaptive);
   EXPECT_EQ(read_json(dir / "c/run.json")["adaptive"]["largest_step_s"], 0.1);
 }

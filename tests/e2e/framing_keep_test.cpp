@@ -21,11 +21,12 @@ std::vector<std::string> with(std::vector<std::string> head, const std::vector<s
 void expect_same_outputs_whatever_is_kept(const TestDir& dir, const std::vector<std::string>& args,
                                           const std::string& part_bytes) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
-      {"kept", {}}, {"none", {"--framing-keep-bytes", "0"}},
+      {"kept", {}},
+      {"none", {"--framing-keep-bytes", "0"}},
       {"part", {"--framing-keep-bytes", part_bytes}}};
   for (const auto& [out, extra] : runs) {
-    const RunResult r = run_tumble(with(with({"render", "--quiet", "--out", out}, args), extra),
-                                   dir.path());
+    const RunResult r =
+        run_tumble(with(with({"render", "--quiet", "--out", out}, args), extra), dir.path());
     ASSERT_EQ(r.exit_code, 0) << describe(r);
   }
   const nlohmann::json none = read_json(dir / "none/run.json");
@@ -64,10 +65,10 @@ TEST(FramingKeep, DefaultSceneSameBytesWhateverTheBudget) {
 
 TEST(FramingKeep, StillsOnlyKeepTheirExposures) {
   const TestDir dir;
-  expect_same_outputs_whatever_is_kept(
-      dir, {"--duration", "2", "--size", "96x64", "--no-mp4", "--still", "0.5", "--still", "1.25",
-            "--still", "2"},
-      "2000");
+  expect_same_outputs_whatever_is_kept(dir,
+                                       {"--duration", "2", "--size", "96x64", "--no-mp4", "--still",
+                                        "0.5", "--still", "1.25", "--still", "2"},
+                                       "2000");
 }
 
 TEST(FramingKeep, AStatedCameraHasNoFramingPass) {

@@ -408,8 +408,8 @@ TEST(Sweep, ListOfTenMillionJobsStartsAtOnceInBoundedMemory) {
   RunOptions quick;
   quick.timeout = std::chrono::seconds(3);
   const RunResult r = run_program(
-      "sh", {"-c", "ulimit -v 1048576 && exec \"$0\" sweep plan.toml --list",
-             tumble_binary().string()},
+      "sh",
+      {"-c", "ulimit -v 1048576 && exec \"$0\" sweep plan.toml --list", tumble_binary().string()},
       dir.path(), quick);
   EXPECT_TRUE(r.timed_out) << "listed all 10^7 jobs in 3 s? " << describe(r);
   const std::vector<std::string> rows = lines(r.out);
@@ -481,8 +481,9 @@ TEST(Sweep, APlanErrorOutsideTheShardIsStillReported) {
     EXPECT_FALSE(fs::exists(dir / "out"));
   }
   // A uniform range whose upper end is out of range: reported at the distribution.
-  write_plan(dir, head + "[random]\ncount = 1000\nseed = 1\n"
-                         "\"floor.restitution\" = { uniform = [0.5, 1.2] }\n");
+  write_plan(dir, head +
+                      "[random]\ncount = 1000\nseed = 1\n"
+                      "\"floor.restitution\" = { uniform = [0.5, 1.2] }\n");
   const RunResult u = sweep({"plan.toml", "--shard", "3/1000", "--list"}, dir.path());
   EXPECT_EQ(u.exit_code, 2) << describe(u);
   EXPECT_NE(u.err.find("plan.toml:6:"), std::string::npos) << u.err;

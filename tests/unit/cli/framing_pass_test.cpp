@@ -45,7 +45,8 @@ struct DropRun {
     std::sort(times.begin(), times.end());
   }
   FramingPass pass(std::size_t budget) const {
-    Progress quiet(Progress::Style::Off, 0, "", "", [] { return 0.0; }, [](const std::string&) {});
+    Progress quiet(
+        Progress::Style::Off, 0, "", "", [] { return 0.0; }, [](const std::string&) {});
     return framing_pass(scene, def, times, budget, quiet);
   }
 };

@@ -1,11 +1,11 @@
 // Progress lines with an injected clock: on a terminal a line redrawn in place; in a log (stderr
 // not a terminal) a complete line at most every 10 s, with done/total, elapsed time and ETA.
+#include "progress.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
 #include <vector>
-
-#include "progress.hpp"
 
 namespace tumble::cli {
 namespace {

@@ -427,8 +427,7 @@ LegendCheck legend_check(const std::string& svg) {
       const auto [ax, ay] = vertices[i - 1];
       const auto [bx, by] = vertices[i];
       const int n = static_cast<int>(std::ceil(std::hypot(bx - ax, by - ay)));
-      for (int k = 1; k < n; ++k)
-        c.ink.push_back({ax + (bx - ax) * k / n, ay + (by - ay) * k / n});
+      for (int k = 1; k < n; ++k) c.ink.push_back({ax + (bx - ax) * k / n, ay + (by - ay) * k / n});
     }
   }
   return c;
@@ -444,8 +443,8 @@ void expect_legend_covers_nothing(const std::string& svg) {
   for (const auto& [px, py] : c.ink)
     EXPECT_FALSE(px >= c.x - kMarkerRadius && px <= c.x + c.w + kMarkerRadius &&
                  py >= c.y - kMarkerRadius && py <= c.y + c.h + kMarkerRadius)
-        << "(" << px << ", " << py << ") in the legend at (" << c.x << ", " << c.y << ") "
-        << c.w << "x" << c.h;
+        << "(" << px << ", " << py << ") in the legend at (" << c.x << ", " << c.y << ") " << c.w
+        << "x" << c.h;
 }
 
 TEST(SvgPlot, LegendCoversNoPointOfTheWorkPrecisionPlot) {

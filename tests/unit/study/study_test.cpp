@@ -152,9 +152,10 @@ velocity = [1.0, 0.0, 0.0]
 
 TEST(Study, AdaptiveRowsDifferByToleranceOnATorqueFreeBox) {
   // A box tumbling fast (18 rad/s) about no principal axis in zero gravity: nothing but the
-  // integrator's error sets the steps (measured: 1 572, 2 292 and 5 496 evaluations). With dt the first trial step and max_step the frame interval, the
-  // controller chooses: the looser the tolerance, the larger its steps and the fewer
-  // evaluations (about tol^(-1/5) each: 2.5x per two decades).
+  // integrator's error sets the steps (measured: 1 572, 2 292 and 5 496 evaluations). With dt the
+  // first trial step and max_step the frame interval, the controller chooses: the looser the
+  // tolerance, the larger its steps and the fewer evaluations (about tol^(-1/5) each: 2.5x per two
+  // decades).
   const Scene s = parse_scene(R"([simulation]
 duration = 2.0
 gravity = [0.0, 0.0, 0.0]
