@@ -26,4 +26,10 @@ using SceneCheck = std::function<void(const std::string& text, const std::string
 /// `args` when the command's options do not fit the scene; the message names the job.
 void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check);
 
+/// A cheap check of the plan itself, whatever shard runs: each random key at the ends of its
+/// range (uniform, integer: both ends; choice: every value; normal: none) with the other keys as
+/// job 0 has them; then job 0, and for each grid value the first job that has it. About as many
+/// checks as the plan has values, whatever its job count. Errors as check_job_scene's.
+void check_plan_values(const Plan& plan, const SceneCheck& check);
+
 }  // namespace tumble::sweep

@@ -16,6 +16,7 @@ namespace tumble {
 
 /// Wall time per stage, seconds. Stages a command does not run stay absent from run.json.
 struct StageTimes {
+  std::optional<double> framing_s;  ///< render of a framed scene: the framing pass
   std::optional<double> simulate_s, render_s, readback_s, encode_s, png_s, gif_s, webp_s;
   double total_s = 0.0;
 };

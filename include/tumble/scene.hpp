@@ -35,7 +35,10 @@ struct SimulationSettings {
   double dt_s = 0.001;  ///< fixed physics step, independent of fps
   Integrator integrator = Integrator::Rk4;
   RotationRep rotation = RotationRep::Quaternion;
-  double tolerance = 1e-8;  ///< adaptive only: local error tolerance (dt is its largest step)
+  double tolerance = 1e-8;  ///< adaptive only: local error tolerance
+  /// adaptive only: the largest step, s (dt is then the first trial step). Absent: the interval
+  /// between samples (render: 1/fps; simulate: 1/rate), so every sample is a step boundary.
+  std::optional<double> max_step_s;
   Vec3 gravity{0.0, -9.81, 0.0};
   double linear_drag = 0.0;   ///< N·s/m; 0 = not modelled
   double angular_drag = 0.0;  ///< N·m·s; 0 = not modelled

@@ -38,7 +38,7 @@ std::vector<double> default_dts(double scene_dt_s);
 struct StudyPlan {
   std::vector<Integrator> integrators;  ///< in this order; Adaptive runs once per tolerance
   std::vector<double> dts_s;            ///< every fixed-step integrator runs at each of these
-  std::vector<double> tolerances;       ///< adaptive runs, each with the scene's dt as largest step
+  std::vector<double> tolerances;       ///< adaptive runs: the scene's dt first, max_step largest
   std::optional<double> target_error_m;  ///< also find the cheapest run reaching this error
   int jobs = 1;                          ///< threads
 };
@@ -54,7 +54,7 @@ struct StudyHooks {
 struct Cancelled {};
 
 /// One setting of the study: a fixed-step integrator at dt, or adaptive at a tolerance with dt
-/// as its largest step.
+/// as its largest step (the scene's max_step; the scene's dt is its first trial step).
 struct RunSetting {
   Integrator integrator = Integrator::Rk4;
   double dt_s = 0.001;

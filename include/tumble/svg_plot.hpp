@@ -46,7 +46,9 @@ struct VerticalMark {
 
 /// One chart: axes, series, vertical marks, an optional legend. Series without a colour take the
 /// palette (Okabe–Ito, colour-blind safe) in order, starting afresh in each panel. The legend
-/// lists the named series, in the inner corner that hides the least data (top-right on a tie).
+/// lists the named series where it covers no data (no point and no line): an inner corner
+/// (top-right first), else any empty place in the plot nearest the top-right; where the plot has
+/// none, the plot narrows and the legend stands to its right.
 struct Panel {
   std::string title;
   Axis x, y;

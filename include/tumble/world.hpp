@@ -53,6 +53,8 @@ struct WorldDef {
   Vec3 gravity{0.0, -9.81, 0.0};
   /// Local error tolerance of the adaptive integrator (dt is then its largest step).
   double tolerance = 1e-8;
+  /// Adaptive only: the controller's first trial step, at most dt; 0 = dt itself.
+  double first_step_s = 0.0;
   double linear_drag = 0.0;   ///< N·s/m, 0 = none
   double angular_drag = 0.0;  ///< N·m·s, 0 = none
   std::optional<FloorDef> floor;

@@ -28,8 +28,16 @@ struct SceneModels {
 /// Loads every body's mesh. Throws tumble::Error (BadInput) naming the mesh file and the problem.
 SceneModels load_models(const Scene& scene);
 
-/// Throws tumble::Error (BadInput) when a body starts below the floor.
-WorldDef make_world_def(const Scene& scene, const SceneModels& models);
+/// The largest step of an adaptive run: the scene's max_step, else `sample_interval_s` (the
+/// interval between the samples the run takes), so that every sample falls on a step boundary.
+double adaptive_max_step_s(const SimulationSettings& sim, double sample_interval_s);
+
+/// Throws tumble::Error (BadInput) when a body starts below the floor. For `adaptive`, the
+/// WorldDef's dt is its largest step (adaptive_max_step_s over `sample_interval_s`, default the
+/// frame interval 1/fps) and the scene's dt its first trial step; the fixed-step integrators step
+/// at the scene's dt.
+WorldDef make_world_def(const Scene& scene, const SceneModels& models,
+                        std::optional<double> sample_interval_s = std::nullopt);
 /// The same, loading the models itself.
 WorldDef make_world_def(const Scene& scene);
 

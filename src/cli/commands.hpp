@@ -87,6 +87,8 @@ struct RenderOptions {
   bool gif = false;               // clip.gif
   bool webp = false;              // clip.webp
   bool draw_every_frame = false;  // hidden: no reuse of unchanged frames (tests compare)
+  // hidden: the framing pass's budget for kept worlds (tests: 0 keeps none, as before)
+  std::optional<std::size_t> framing_keep_bytes;
 };
 void add_render_command(CLI::App& app, RenderOptions& o);
 /// What the renders of one process share (tumble sweep): the EGL context the first one makes,

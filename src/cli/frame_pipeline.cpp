@@ -11,8 +11,20 @@
 
 namespace tumble::cli {
 
-FramePipeline::FramePipeline(const WorldDef& def, Renderer& renderer, int fps, long clip_frames)
-    : renderer_(renderer), fps_(fps), clip_frames_(clip_frames), world_(def), sampler_(world_) {}
+FramePipeline::FramePipeline(const WorldDef& def, Renderer& renderer, int fps, long clip_frames,
+                             KeptRun* kept)
+    : renderer_(renderer),
+      fps_(fps),
+      clip_frames_(clip_frames),
+      kept_(kept),
+      world_(kept && kept->resume ? std::move(*kept->resume) : World(def)),
+      sampler_(world_) {}
+
+World FramePipeline::sample(double t) {
+  if (kept_)
+    if (std::optional<World> w = kept_->take(t)) return std::move(*w);
+  return sampler_.at(t);
+}
 
 void FramePipeline::add_clip_sink(SinkPtr sink) {
   clip_sinks_.push_back(std::move(sink));
@@ -147,13 +159,13 @@ void FramePipeline::run_all(Progress& progress) {
       const Due& d = due[next_due++];
       const auto t0 = Clock::now();
       PendingPicture& p = pictures_[d.picture];
-      p.poses.push_back(sampler_.at(d.t));
+      p.poses.push_back(sample(d.t));
       simulate_s_ += seconds_since(t0);
       if (p.poses.size() == p.picture.times_s.size()) draw_picture(p);
       continue;
     }
     auto t0 = Clock::now();
-    World snapshot = sampler_.at(frame_t);
+    World snapshot = sample(frame_t);
     simulate_s_ += seconds_since(t0);
     if (!draw_every_frame_ && last_drawn && same_poses(*last_drawn, snapshot)) {
       // Nothing moved since the last drawn frame, and the camera sees only the bodies' poses

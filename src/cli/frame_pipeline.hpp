@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "frame_sink.hpp"
+#include "framing_pass.hpp"
 #include "picture.hpp"
 #include "progress.hpp"
 #include "tumble/renderer.hpp"
@@ -31,7 +32,10 @@ class FramePipeline {
  public:
   /// A run of `def` drawn by `renderer`; `clip_frames` frames at `fps` go to the clip sinks
   /// (0: no clip, pictures only).
-  FramePipeline(const WorldDef& def, Renderer& renderer, int fps, long clip_frames);
+  /// `kept`: the worlds the framing pass kept (the pipeline takes them and goes on from its
+  /// resume world), or null: everything is simulated here.
+  FramePipeline(const WorldDef& def, Renderer& renderer, int fps, long clip_frames,
+                KeptRun* kept = nullptr);
   FramePipeline(const FramePipeline&) = delete;
   FramePipeline& operator=(const FramePipeline&) = delete;
 
@@ -66,12 +70,15 @@ class FramePipeline {
     double seconds = 0.0;      // its sink's time
   };
   void run_all(Progress& progress);
+  // The world at t: the framing pass's where it kept it, else sampled here.
+  World sample(double t);
   void draw_picture(PendingPicture& p);
   void abort_all() noexcept;
 
   Renderer& renderer_;
   int fps_;
   long clip_frames_;
+  KeptRun* kept_;
   World world_;
   Sampler sampler_;
   std::vector<SinkPtr> clip_sinks_;

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "frame_pipeline.hpp"
 #include "frame_sinks.hpp"
+#include "framing_pass.hpp"
 #include "progress.hpp"
 #include "tumble/camera_framing.hpp"
 #include "tumble/egl_context.hpp"
@@ -85,6 +86,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_flag("--draw-every-frame", o.draw_every_frame,
                 "Draw every clip frame in full, even where nothing moved (the same output, slower)")
       ->group("");
+  // Hidden: the framing pass's budget for the worlds it keeps for drawing (tests compare a
+  // render that keeps none, or some, with one that keeps them all).
+  cmd->add_option("--framing-keep-bytes", o.framing_keep_bytes,
+                  "Bytes of worlds the framing pass keeps for drawing (default 256 MiB)")
+      ->group("");
 }
 
 int run_render(const RenderOptions& o, RenderSession* session) {
@@ -136,9 +142,35 @@ int run_render(const RenderOptions& o, RenderSession* session) {
         " pixels a side; got " + std::to_string(width) + "x" + std::to_string(height));
   const SceneModels models = load_models(scene);
   const WorldDef def = make_world_def(scene, models);
-  // No camera position in the scene: simulate once to frame the whole run (a few ms next to
-  // drawing it); run.json then records the camera used, so the view can be pinned.
-  scene.camera = frame_camera(scene, def);
+  std::vector<double> stills = o.stills;
+  for (double& t : stills) t += 0.0;  // -0 names the same still as 0
+  std::sort(stills.begin(), stills.end());
+  stills.erase(std::unique(stills.begin(), stills.end()), stills.end());
+  const std::optional<Picture> strobe_times =
+      o.strobe ? std::optional(strobe_picture(*o.strobe, strobe_from, strobe_to, nullptr))
+               : std::nullopt;
+  // No camera position in the scene: simulate once to frame the whole run; run.json then
+  // records the camera used, so the view can be pinned. That pass keeps the worlds the drawing
+  // needs (clip frames, exposures) within a budget, so the run is not simulated twice.
+  std::optional<KeptRun> kept;
+  std::optional<double> framing_s;
+  if (!scene.camera.position_given) {
+    std::vector<double> keep_times = stills;
+    if (strobe_times)
+      keep_times.insert(keep_times.end(), strobe_times->times_s.begin(),
+                        strobe_times->times_s.end());
+    if (want_clip)
+      for (long k = 0; k < frames; ++k) keep_times.push_back(static_cast<double>(k) / fps);
+    std::sort(keep_times.begin(), keep_times.end());
+    keep_times.erase(std::unique(keep_times.begin(), keep_times.end()), keep_times.end());
+    Progress framing_progress(!o.common.quiet, framing_samples(scene, keep_times), "framing",
+                              "samples");
+    FramingPass pass = framing_pass(
+        scene, def, keep_times, o.framing_keep_bytes.value_or(kFramingKeepBytes), framing_progress);
+    scene.camera = pass.camera;
+    kept = std::move(pass.kept);
+    framing_s = pass.seconds;
+  }
 
   // Locked for this run; every output is staged and committed together, run.json last, so a
   // run that fails or is stopped leaves the folder exactly as it was.
@@ -164,7 +196,7 @@ int run_render(const RenderOptions& o, RenderSession* session) {
 
     // The sinks: every clip frame to the clip sinks; each still and the strobe is a picture.
     const long clip_frames = want_clip ? frames : 0;
-    FramePipeline pipeline(def, renderer, fps, clip_frames);
+    FramePipeline pipeline(def, renderer, fps, clip_frames, kept ? &*kept : nullptr);
     pipeline.draw_every_frame(o.draw_every_frame);
     if (want_mp4)
       pipeline.add_clip_sink(make_mp4_sink(outputs->file("clip.mp4"),
@@ -178,10 +210,6 @@ int run_render(const RenderOptions& o, RenderSession* session) {
     if (o.webp)
       pipeline.add_clip_sink(
           make_webp_sink(outputs->file("clip.webp"), width, height, fps, o.transparent));
-    std::vector<double> stills = o.stills;
-    for (double& t : stills) t += 0.0;  // -0 names the same still as 0
-    std::sort(stills.begin(), stills.end());
-    stills.erase(std::unique(stills.begin(), stills.end()), stills.end());
     for (const double t : stills)
       pipeline.add_picture(still_picture(
           t, make_png_image_sink(outputs->file("still_" + format_double(t) + ".png"))));
@@ -216,6 +244,7 @@ int run_render(const RenderOptions& o, RenderSession* session) {
             : std::string(kAntialiasNames[static_cast<int>(renderer.antialias())]);
     if (o.transparent || o.strobe || o.gif || o.webp) report.figures = figures;
     pipeline.report(report);
+    report.times.framing_s = framing_s;
     report.energy_start_J = World(def).total_energy();
     report.energy_end_J = pipeline.sampler().at(duration).total_energy();
     report.contact = pipeline.world().contact_stats();

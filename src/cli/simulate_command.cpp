@@ -97,7 +97,8 @@ int run_simulate(const SimulateOptions& o) {
   if (!std::isfinite(rate) || rate <= 0.0 || rate > 1e6)
     throw Error(ErrorKind::BadInput, "--rate must be a positive number of Hz, at most 1e6");
   const SceneModels models = load_models(scene);
-  const WorldDef def = make_world_def(scene, models);
+  // adaptive: its largest step defaults to the sample interval, so sampling never re-steps.
+  const WorldDef def = make_world_def(scene, models, 1.0 / rate);
   const double duration = scene.simulation.duration_s, dt = def.dt_s;
   const long steps = step_count_for(duration, dt);
   const long samples = o.every_step ? steps + 1 : sample_count(duration, rate);

@@ -1,8 +1,9 @@
 // tumble sweep PLAN: every job of a plan (or one shard of them), each in OUT/job_NNNNN/ with its
 // effective scene.toml, the command's outputs and run.json last; --list, --collect. The plan,
 // its jobs, the job folders and the CSV tables are the sweep layer's (tumble/sweep.hpp); this
-// file parses the job options with the subcommand's own definitions, checks every job's scene
-// before any runs, and runs the jobs one after another in this process (one EGL context).
+// file parses the job options with the subcommand's own definitions, checks the plan's values
+// and then every job's scene of this shard (made one at a time, never all at once) before any
+// runs, and runs the jobs one after another in this process (one EGL context).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -91,19 +92,39 @@ std::string models_key(const Scene& scene) {
   return key;
 }
 
-// Checks every job's scene the way the job will load it (scene loader, overrides, world
-// builder), before any job runs. Models are loaded once per distinct set of mesh files.
-void check_jobs(const Plan& plan, const std::vector<Job>& jobs, const CommonOptions& common) {
-  std::map<std::string, SceneModels> models;
-  const sweep::SceneCheck check = [&](const std::string& text, const std::string& name) {
-    Scene scene = parse_scene(text, name, {common.duration_s, common.dt_s});
-    apply_overrides(scene, common);
-    const std::string key = models_key(scene);
-    auto it = models.find(key);
-    if (it == models.end()) it = models.emplace(key, load_models(scene)).first;
-    make_world_def(scene, it->second);
-  };
-  for (const Job& job : jobs) sweep::check_job_scene(plan, job, check);
+// Checks job scenes the way each job will load them (scene loader, overrides, world builder).
+// Models are loaded once per distinct set of mesh files.
+class JobChecker {
+ public:
+  JobChecker(const Plan& plan, const CommonOptions& common) : plan_(plan) {
+    check_ = [this, &common](const std::string& text, const std::string& name) {
+      Scene scene = parse_scene(text, name, {common.duration_s, common.dt_s});
+      apply_overrides(scene, common);
+      const std::string key = models_key(scene);
+      auto it = models_.find(key);
+      if (it == models_.end()) it = models_.emplace(key, load_models(scene)).first;
+      make_world_def(scene, it->second);
+    };
+  }
+  /// The plan itself, cheaply (check_plan_values): what any shard must hear about.
+  void plan_values() const { sweep::check_plan_values(plan_, check_); }
+  void job(const Job& job) const { sweep::check_job_scene(plan_, job, check_); }
+
+ private:
+  const Plan& plan_;
+  mutable std::map<std::string, SceneModels> models_;
+  sweep::SceneCheck check_;
+};
+
+// Calls f(job) for every job of the shard, in order, each made when it is reached: memory does
+// not grow with the plan's job count.
+template <class F>
+void for_each_job(const Plan& plan, const sweep::Shard& shard, F&& f) {
+  const std::size_t count = plan.job_count();
+  for (std::size_t j = shard.index; j < count; j += shard.count) {
+    throw_if_interrupted();  // a long list or check stops at a signal like a run
+    f(sweep::make_job(plan, j));
+  }
 }
 
 sweep::Shard choose_shard(const SweepOptions& o) {
@@ -182,29 +203,45 @@ int run_sweep(const SweepOptions& o) {
   JobOptions options = parse_job_options(plan);
   CommonOptions& common = options.common(plan);
   if (o.quiet) common.quiet = true;
-  std::vector<Job> jobs;
-  jobs.reserve(plan.job_count());
-  for (std::size_t i = 0; i < plan.job_count(); ++i) jobs.push_back(sweep::make_job(plan, i));
-  check_jobs(plan, jobs, common);
+  // The plan's own values first, then only the jobs this process lists or runs, each when it
+  // is reached: a shard of a huge plan checks its share, and --list starts at once.
+  const JobChecker checker(plan, common);
+  checker.plan_values();
   const sweep::Shard shard = o.collect ? sweep::Shard{} : choose_shard(o);
 
   if (o.list) {
-    std::vector<Job> listed;
-    for (const Job& job : jobs)
-      if (shard.contains(job.index)) listed.push_back(job);
-    std::fputs(sweep::job_list_csv(plan, listed).c_str(), stdout);
+    // Streamed: each row as soon as its job is checked (a later job's error ends the list).
+    std::fputs((sweep::job_list_header(plan) + "\n").c_str(), stdout);
+    std::fflush(stdout);
+    for_each_job(plan, shard, [&](const Job& job) {
+      checker.job(job);
+      std::fputs((sweep::job_list_row(job) + "\n").c_str(), stdout);
+      std::fflush(stdout);
+    });
     return 0;
   }
   const fs::path out = o.out_dir.empty() ? fs::path("out") / plan.stem : fs::path(o.out_dir);
-  if (o.collect) return collect(plan, jobs, out, o.quiet);
+  if (o.collect) {
+    std::vector<Job> jobs;
+    jobs.reserve(plan.job_count());
+    for_each_job(plan, shard, [&](const Job& job) {
+      checker.job(job);
+      jobs.push_back(job);
+    });
+    return collect(plan, jobs, out, o.quiet);
+  }
+  // Every job of the shard is checked before any runs.
+  std::size_t in_shard = 0;
+  for_each_job(plan, shard, [&](const Job& job) {
+    checker.job(job);
+    ++in_shard;
+  });
 
   RenderSession session;
   int worst = 0;
-  std::size_t ran = 0, skipped = 0, failed = 0, in_shard = 0;
-  for (const Job& job : jobs) in_shard += shard.contains(job.index) ? 1 : 0;
+  std::size_t ran = 0, skipped = 0, failed = 0;
   std::size_t done = 0;
-  for (const Job& job : jobs) {
-    if (!shard.contains(job.index)) continue;
+  for_each_job(plan, shard, [&](const Job& job) {
     throw_if_interrupted();
     ++done;
     const fs::path dir = out / sweep::job_folder_name(job.index);
@@ -214,7 +251,7 @@ int run_sweep(const SweepOptions& o) {
       // Finished for this very scene and version: its outputs would come out the same.
       ++skipped;
       if (before.state == JobState::Failed) worst = worse(worst, before.exit_code);
-      continue;
+      return;
     }
     const auto job_start = std::chrono::steady_clock::now();
     make_output_dir(dir);
@@ -250,7 +287,7 @@ int run_sweep(const SweepOptions& o) {
       std::printf("tumble: sweep: job %zu done in %.2f s (%zu/%zu of shard %s)\n", job.index,
                   seconds_since(job_start), done, in_shard, shard.describe().c_str());
     }
-  }
+  });
   if (!o.quiet)
     std::printf(
         "tumble: sweep: shard %s: %zu jobs, %zu ran, %zu skipped (finished before), %zu "

@@ -16,7 +16,10 @@ TrajectoryPlot::TrajectoryPlot(std::string stem, double duration_s, long samples
 void TrajectoryPlot::add(long k, double t, const World& world) {
   if (k % stride_ != 0 && k != samples_ - 1) return;
   if (bodies_.empty()) {
-    for (const RigidBody& b : world.bodies()) bodies_.push_back(b.name());
+    for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+      bodies_.push_back(world.bodies()[i].name());
+      rest_speed_mps_.push_back(world.tolerances(i).rest_speed_mps);
+    }
     height_.resize(bodies_.size());
     energy_.resize(bodies_.size());
   }
@@ -29,16 +32,9 @@ void TrajectoryPlot::add(long k, double t, const World& world) {
 
 std::string TrajectoryPlot::svg(const std::vector<ImpactEvent>& impacts) const {
   const bool several = bodies_.size() > 1;
-  // One line per impact; impacts closer than a thousandth of the run (resting micro-impacts,
-  // several points landing at once) are one line: they would be drawn on the same pixel.
   std::vector<plot::VerticalMark> marks;
-  double last_t = -INFINITY;
-  for (const ImpactEvent& e : impacts) {
-    if (e.t_s - last_t < duration_s_ / 1000.0) continue;
-    last_t = e.t_s;
-    const std::size_t body = static_cast<std::size_t>(e.body);
-    marks.push_back({e.t_s, several && body < bodies_.size() ? bodies_[body] : std::string()});
-  }
+  for (const ImpactMark& m : impact_marks(impacts))
+    marks.push_back({m.t_s, several ? m.label : ""});
 
   const plot::Axis time{"time (s)", plot::Scale::Linear, 0.0, duration_s_};
   plot::Panel height;
@@ -83,6 +79,31 @@ std::string TrajectoryPlot::svg(const std::vector<ImpactEvent>& impacts) const {
   f.panel_height_px = 300;
   f.panels = {height, energy};
   return plot::render_svg(f);
+}
+
+std::vector<TrajectoryPlot::ImpactMark> TrajectoryPlot::impact_marks(
+    const std::vector<ImpactEvent>& impacts) const {
+  std::vector<ImpactMark> marks;
+  double last_t = -INFINITY;
+  std::string last_label;
+  for (const ImpactEvent& e : impacts) {
+    const std::size_t body = static_cast<std::size_t>(e.body);
+    if (body >= bodies_.size()) continue;
+    // An impact is a bounce: a point arriving at the body's rest speed or faster. Slower
+    // arrivals are contact coming to rest (a sliding box settling on its face, a resting body's
+    // micro-impacts), which the height line already shows; they are not marked.
+    if (!(e.approach_speed_mps >= rest_speed_mps_[body])) continue;
+    // Impacts closer than a thousandth of the run (several points landing at once) are one
+    // line: they would be drawn on the same pixel.
+    if (e.t_s - last_t < duration_s_ / 1000.0) continue;
+    last_t = e.t_s;
+    // A label names the body that hit; a run of impacts of one body is named once, at its
+    // first (the plot also leaves out a label that would overlap the one before).
+    const std::string& name = bodies_[body];
+    marks.push_back({e.t_s, name == last_label ? std::string() : name});
+    last_label = name;
+  }
+  return marks;
 }
 
 }  // namespace tumble::cli

@@ -26,6 +26,16 @@ class TrajectoryPlot {
   /// The figure as SVG text; `impacts` are the run's impact events (ContactStats::events).
   std::string svg(const std::vector<ImpactEvent>& impacts) const;
 
+  /// A marked impact: its time, and the body named above its line (empty: none).
+  struct ImpactMark {
+    double t_s = 0.0;
+    std::string label;
+  };
+  /// The impacts marked: bounces only (a point arriving at the body's rest speed or faster;
+  /// contact coming to rest is not an impact), those within a thousandth of the run of the
+  /// last one merged, and a body named only where the body before was another. Needs add().
+  std::vector<ImpactMark> impact_marks(const std::vector<ImpactEvent>& impacts) const;
+
   /// Every stride-th sample is plotted (and the last).
   long stride() const { return stride_; }
 
@@ -34,6 +44,7 @@ class TrajectoryPlot {
   double duration_s_;
   long samples_, stride_;
   std::vector<std::string> bodies_;
+  std::vector<double> rest_speed_mps_;  // per body: below it an arrival is coming to rest
   std::vector<double> t_;
   std::vector<std::vector<double>> height_, energy_;  // [body][point]
 };

@@ -14,15 +14,17 @@ ordered_json vec(const Vec3& v) {
   return ordered_json::array({v.x(), v.y(), v.z()});
 }
 
-ordered_json settings_json(const Scene& s) {
+ordered_json settings_json(const Scene& s, const World* world) {
   ordered_json j;
   const SimulationSettings& sim = s.simulation;
+  const bool adaptive = sim.integrator == Integrator::Adaptive;
   j["simulation"] = {
       {"duration_s", sim.duration_s},
       {"dt_s", sim.dt_s},
       {"integrator", to_string(sim.integrator)},
-      {"tolerance",
-       sim.integrator == Integrator::Adaptive ? ordered_json(sim.tolerance) : ordered_json()},
+      {"tolerance", adaptive ? ordered_json(sim.tolerance) : ordered_json()},
+      // The effective largest step (the scene's, or the sample interval); null: not adaptive.
+      {"max_step_s", adaptive && world ? ordered_json(world->def().dt_s) : ordered_json()},
       {"rotation", to_string(sim.rotation)},
       {"gravity", vec(sim.gravity)},
       {"linear_drag", sim.linear_drag},
@@ -78,7 +80,7 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
   j["command"] = r.command;
   if (r.scene) {
     j["scene"] = {{"path", r.scene->source_name}, {"sha256", sha256_hex(r.scene->source_text)}};
-    j["settings"] = settings_json(*r.scene);
+    j["settings"] = settings_json(*r.scene, r.world);
   }
   j["counts"] = {{"steps", r.steps},
                  {"derivative_evaluations", r.world ? r.world->derivative_evaluations() : 0},
@@ -91,6 +93,7 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
   if (r.world && r.world->def().integrator == Integrator::Adaptive) {
     const StepStats& st = r.world->step_stats();
     j["adaptive"] = {{"tolerance", r.world->def().tolerance},
+                     {"first_step_s", r.world->def().first_step_s},
                      {"largest_step_s", r.world->def().dt_s},
                      {"accepted_steps", st.accepted},
                      {"rejected_steps", st.rejected},
@@ -106,6 +109,7 @@ void write_run_report(const std::filesystem::path& path, const RunReport& r) {
   auto stage = [&](const char* name, const std::optional<double>& s) {
     if (s) times[name] = *s;
   };
+  stage("framing_s", r.times.framing_s);
   stage("simulate_s", r.times.simulate_s);
   stage("render_s", r.times.render_s);
   stage("readback_s", r.times.readback_s);

@@ -292,67 +292,92 @@ std::vector<std::size_t> y_labels_that_fit(const AxisTicks& ticks, const AxisMap
   return kept;
 }
 
-// Each legend corner is scored by how much of the data the box would hide: the points, and
-// samples every few pixels along the lines. The emptiest wins; ties keep the first of top-right,
-// top-left, bottom-right, bottom-left.
-Rect legend_box(const std::vector<Trace>& ts, const Rect& plot, double box_w, double box_h) {
-  constexpr double kInset = 6.0;
+// What a legend box must not cover: every point of every series, and samples every 4 px (at
+// most 256 a segment) along its lines.
+std::vector<Point> ink(const std::vector<Trace>& ts) {
+  std::vector<Point> out;
+  for (const Trace& t : ts) {
+    for (const std::vector<Point>& run : t.runs) {
+      for (std::size_t i = 0; i < run.size(); ++i) {
+        out.push_back(run[i]);
+        if (i == 0 || !t.series->line) continue;
+        const Point a = run[i - 1], b = run[i];
+        const double length = std::hypot(b.x - a.x, b.y - a.y);
+        const int samples = static_cast<int>(std::min(256.0, std::ceil(length / 4.0)));
+        for (int k = 1; k < samples; ++k) {
+          const double f = k / static_cast<double>(samples);
+          out.push_back({a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)});
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// Where in the plot a legend of box_w × box_h hides no data (no point, no line, with a marker's
+// radius of room): the inner corners first (top-right, top-left, bottom-right, bottom-left),
+// then any place on an 8 px grid, nearest the top-right corner first. None: every place hides
+// something, and the legend goes beside the plot (draw_panel).
+std::optional<Rect> empty_legend_box(const std::vector<Point>& ink, const Rect& plot, double box_w,
+                                     double box_h) {
+  constexpr double kInset = 6.0, kStepPx = 8.0;
   const double left = plot.left + kInset, right = plot.right - kInset;
   const double top = plot.top + kInset, bottom = plot.bottom - kInset;
+  if (right - left < box_w || bottom - top < box_h) return std::nullopt;
+  const auto empty = [&](const Rect& box) {
+    return std::none_of(ink.begin(), ink.end(),
+                        [&](Point p) { return box.contains(p, kMarkerRadiusPx + 1.0); });
+  };
   const std::array<Rect, 4> corners = {
       Rect{right - box_w, top, right, top + box_h},
       Rect{left, top, left + box_w, top + box_h},
       Rect{right - box_w, bottom - box_h, right, bottom},
       Rect{left, bottom - box_h, left + box_w, bottom},
   };
-  std::array<long, 4> hidden{};
-  const auto score = [&](Point p) {
-    for (std::size_t c = 0; c < corners.size(); ++c)
-      if (corners[c].contains(p, kMarkerRadiusPx)) ++hidden[c];
-  };
-  for (const Trace& t : ts) {
-    for (const std::vector<Point>& run : t.runs) {
-      for (std::size_t i = 0; i < run.size(); ++i) {
-        score(run[i]);
-        if (i == 0 || !t.series->line) continue;
-        // Samples every 4 px (at most 256 a segment) between this point and the previous one.
-        const Point a = run[i - 1], b = run[i];
-        const double length = std::hypot(b.x - a.x, b.y - a.y);
-        const int samples = static_cast<int>(std::min(256.0, std::ceil(length / 4.0)));
-        for (int k = 1; k < samples; ++k) {
-          const double f = k / static_cast<double>(samples);
-          score({a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)});
-        }
-      }
-    }
-  }
-  std::size_t best = 0;
-  for (std::size_t c = 1; c < corners.size(); ++c)
-    if (hidden[c] < hidden[best]) best = c;
-  return corners[best];
+  for (const Rect& c : corners)
+    if (empty(c)) return c;
+  std::vector<Rect> places;
+  for (double y = top; y + box_h <= bottom; y += kStepPx)
+    for (double x = right - box_w; x >= left; x -= kStepPx)
+      places.push_back({x, y, x + box_w, y + box_h});
+  std::stable_sort(places.begin(), places.end(), [&](const Rect& a, const Rect& b) {
+    return std::hypot(right - a.right, a.top - top) < std::hypot(right - b.right, b.top - top);
+  });
+  for (const Rect& place : places)
+    if (empty(place)) return place;
+  return std::nullopt;
 }
 
-void legend(std::string& out, const std::vector<Trace>& ts, const Rect& plot) {
+// The legend's rows: the named series.
+struct LegendSize {
   std::vector<const Trace*> entries;
+  double w = 0.0, h = 0.0;
+};
+constexpr double kLegendPad = 6.0, kLegendSamplePx = 26.0, kLegendRowPx = 16.0;
+
+LegendSize legend_size(const std::vector<Trace>& ts) {
+  LegendSize size;
   double text_w = 0.0;
   for (const Trace& t : ts) {
     if (t.series->name.empty()) continue;
-    entries.push_back(&t);
+    size.entries.push_back(&t);
     text_w = std::max(text_w, text_width(t.series->name, kLegendFontPx));
   }
-  if (entries.empty()) return;
-  constexpr double kPad = 6.0, kSamplePx = 26.0, kRowPx = 16.0;
-  const double box_w = kPad + kSamplePx + kGapPx + text_w + kPad;
-  const double box_h = 2.0 * kPad + kRowPx * static_cast<double>(entries.size()) - 4.0;
-  const Rect box = legend_box(ts, plot, box_w, box_h);
+  if (size.entries.empty()) return size;
+  size.w = kLegendPad + kLegendSamplePx + kGapPx + text_w + kLegendPad;
+  size.h = 2.0 * kLegendPad + kLegendRowPx * static_cast<double>(size.entries.size()) - 4.0;
+  return size;
+}
 
+void legend(std::string& out, const LegendSize& size, const Rect& box) {
+  if (size.entries.empty()) return;
   put(out, "<g font-size=\"", kLegendFontPx, "\" fill=\"", kTextColor, "\">\n");
-  put(out, "<rect x=\"", box.left, "\" y=\"", box.top, "\" width=\"", box_w, "\" height=\"", box_h,
-      "\" rx=\"3\" fill=\"#ffffff\" fill-opacity=\"0.9\" stroke=\"#cccccc\"/>\n");
-  for (std::size_t i = 0; i < entries.size(); ++i) {
-    const Trace& t = *entries[i];
-    const double cy = box.top + kPad + kRowPx * (static_cast<double>(i) + 0.5) - 2.0;
-    const double x0 = box.left + kPad, x1 = x0 + kSamplePx;
+  put(out, "<rect x=\"", box.left, "\" y=\"", box.top, "\" width=\"", size.w, "\" height=\"",
+      size.h, "\" rx=\"3\" fill=\"#ffffff\" fill-opacity=\"0.9\" stroke=\"#cccccc\"/>\n");
+  for (std::size_t i = 0; i < size.entries.size(); ++i) {
+    const Trace& t = *size.entries[i];
+    const double cy = box.top + kLegendPad + kLegendRowPx * (static_cast<double>(i) + 0.5) - 2.0;
+    const double x0 = box.left + kLegendPad, x1 = x0 + kLegendSamplePx;
     if (t.series->line) {
       out += "<g fill=\"none\">\n";
       polyline(out, {{x0, cy}, {x1, cy}}, t);
@@ -479,8 +504,29 @@ Margins margins(const PanelLayout& layout, double h) {
   return {layout.plot.left, layout.plot.top, h - layout.plot.bottom};
 }
 
-void draw_panel(std::string& out, const Panel& panel, const PanelLayout& layout, int index,
+void draw_panel(std::string& out, const Panel& panel, const Margins& aligned, int index,
                 Point origin, double w, double h) {
+  PanelLayout layout = layout_panel(panel, w, h, aligned);
+  // The legend goes where it hides no data; where no place inside the plot is empty, the plot
+  // narrows and the legend stands beside it, to the right.
+  std::optional<Rect> legend_at;
+  LegendSize legend_rows;
+  {
+    const AxisMap x_map(panel.x.scale, layout.x_ticks, layout.plot.left, layout.plot.right);
+    const AxisMap y_map(panel.y.scale, layout.y_ticks, layout.plot.bottom, layout.plot.top);
+    const std::vector<Trace> ts = traces(panel, x_map, y_map);
+    legend_rows = legend_size(ts);
+    if (panel.legend && !legend_rows.entries.empty()) {
+      legend_at = empty_legend_box(ink(ts), layout.plot, legend_rows.w, legend_rows.h);
+      if (!legend_at) {
+        const double beside = legend_rows.w + 2.0 * kGapPx;
+        layout = layout_panel(panel, w - beside, h, aligned);
+        legend_at =
+            Rect{layout.plot.right + kGapPx, layout.plot.top,
+                 layout.plot.right + kGapPx + legend_rows.w, layout.plot.top + legend_rows.h};
+      }
+    }
+  }
   const Rect& plot = layout.plot;
   const AxisTicks &x_ticks = layout.x_ticks, &y_ticks = layout.y_ticks;
   const AxisMap x_map(panel.x.scale, x_ticks, plot.left, plot.right);
@@ -567,7 +613,14 @@ void draw_panel(std::string& out, const Panel& panel, const PanelLayout& layout,
     text(out, at, panel.y.label, "middle", style);
   }
 
-  if (panel.legend) legend(out, ts, plot);
+  if (legend_at) {
+    // The rows point at this drawing's traces (the same series, in the same order).
+    LegendSize rows = legend_rows;
+    rows.entries.clear();
+    for (const Trace& t : ts)
+      if (!t.series->name.empty()) rows.entries.push_back(&t);
+    legend(out, rows, *legend_at);
+  }
   out += "</g>\n";
 }
 
@@ -614,9 +667,8 @@ std::string render_svg(const Figure& figure) {
   for (std::size_t i = 0; i < figure.panels.size(); ++i) {
     const std::size_t c = i % column.size(), r = i / column.size();
     const Margins aligned{column[c].left, row[r].top, row[r].bottom};
-    const PanelLayout layout = layout_panel(figure.panels[i], w_px, h_px, aligned);
     const Point origin{static_cast<double>(c) * w_px, title_h + static_cast<double>(r) * h_px};
-    draw_panel(out, figure.panels[i], layout, static_cast<int>(i), origin, w_px, h_px);
+    draw_panel(out, figure.panels[i], aligned, static_cast<int>(i), origin, w_px, h_px);
   }
   out += "</svg>\n";
   return out;

@@ -39,8 +39,8 @@ double length(const Vec3& v) {
 SimulationSettings read_simulation(const toml::table& table, const std::string& file,
                                    const TimeOverrides& overrides) {
   const TableReader r(table, "[simulation]", file,
-                      {"duration", "dt", "integrator", "tolerance", "rotation", "gravity",
-                       "linear_drag", "angular_drag", "collisions"});
+                      {"duration", "dt", "integrator", "tolerance", "max_step", "rotation",
+                       "gravity", "linear_drag", "angular_drag", "collisions"});
   SimulationSettings s;
   // The upper bound (about 11.6 days) keeps the step and frame counts of a run sane.
   s.duration_s = r.number("duration", {0.0, 1e6, true, false}).value_or(s.duration_s);
@@ -58,6 +58,9 @@ SimulationSettings read_simulation(const toml::table& table, const std::string& 
     s.integrator = static_cast<Integrator>(*i);  // kIntegratorNames is in enum order
   // Below 1e-14 a local error is round-off, not truncation; above 0.1 nothing is controlled.
   s.tolerance = r.number("tolerance", {1e-14, 0.1, false, false}).value_or(s.tolerance);
+  // Like tolerance, read (and checked) whatever the integrator, used by adaptive alone: a scene
+  // keeps it while --integrator tries a fixed-step method.
+  s.max_step_s = r.number("max_step", kPositive);
   if (const auto i = r.choice("rotation", kRotationNames))
     s.rotation = static_cast<RotationRep>(*i);
   s.gravity = r.vec3("gravity").value_or(s.gravity);

@@ -1,5 +1,6 @@
 #include "tumble/world_builder.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <sstream>
@@ -105,10 +106,21 @@ WorldDef make_world_def(const Scene& scene) {
   return make_world_def(scene, load_models(scene));
 }
 
-WorldDef make_world_def(const Scene& scene, const SceneModels& models) {
+double adaptive_max_step_s(const SimulationSettings& sim, double sample_interval_s) {
+  return sim.max_step_s.value_or(sample_interval_s);
+}
+
+WorldDef make_world_def(const Scene& scene, const SceneModels& models,
+                        std::optional<double> sample_interval_s) {
   const SimulationSettings& sim = scene.simulation;
   WorldDef def;
   def.dt_s = sim.dt_s;
+  if (sim.integrator == Integrator::Adaptive) {
+    // The controller chooses the step: from dt as its first trial up to the largest step (the
+    // World's step), never beyond; a first trial above the largest is the largest.
+    def.dt_s = adaptive_max_step_s(sim, sample_interval_s.value_or(1.0 / scene.render.fps));
+    def.first_step_s = std::min(sim.dt_s, def.dt_s);
+  }
   def.integrator = sim.integrator;
   def.rotation = sim.rotation;
   def.tolerance = sim.tolerance;

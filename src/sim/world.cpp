@@ -108,7 +108,10 @@ World::World(const WorldDef& def) : def_(def) {
     flight_start_state_.push_back(bodies_.back().state);
     flight_start_known_.push_back(true);
   }
-  controllers_.resize(bodies_.size());
+  // The adaptive controller starts from its first trial step (the scene's dt) and grows to dt.
+  AdaptiveController start;
+  if (def.first_step_s > 0.0) start.h_next_s = std::min(def.first_step_s, def.dt_s);
+  controllers_.assign(bodies_.size(), start);
   // Islands are looked for only when some pair of bodies can meet: a scene of one body, or of
   // bodies that pass through each other, is stepped body by body as it always was.
   if (def.collisions)

@@ -1,5 +1,6 @@
 #include "run_record.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "tumble/camera.hpp"
@@ -42,6 +43,9 @@ WorldDef StudySetup::def_for(Integrator integrator, double dt_s,
   WorldDef d = def;
   d.integrator = integrator;
   d.dt_s = dt_s;
+  // adaptive: dt_s is its largest step, and the scene's dt its first trial step.
+  d.first_step_s =
+      integrator == Integrator::Adaptive ? std::min(scene->simulation.dt_s, dt_s) : 0.0;
   if (tolerance) d.tolerance = *tolerance;
   return d;
 }

@@ -14,6 +14,7 @@
 #include "run_record.hpp"
 #include "tumble/error.hpp"
 #include "tumble/trajectory_writer.hpp"
+#include "tumble/world_builder.hpp"
 #include "work_pool.hpp"
 
 namespace tumble::study {
@@ -152,8 +153,11 @@ StudyResult run_study(const Scene& scene, const StudyPlan& plan, const StudyHook
     }
     for (const double dt : plan.dts_s) add_row({i, dt, std::nullopt});
   }
+  // adaptive: its dt is the largest step (max_step, default the frame interval the study samples
+  // at); the scene's dt is only its first trial step, and the controller chooses the rest.
+  const double adaptive_max_s = adaptive_max_step_s(scene.simulation, 1.0 / scene.render.fps);
   if (adaptive)
-    for (const double tol : plan.tolerances) add_row({Integrator::Adaptive, result.base_dt_s, tol});
+    for (const double tol : plan.tolerances) add_row({Integrator::Adaptive, adaptive_max_s, tol});
 
   // The reference: exact where the scene allows it, else rk4 much finer than any row.
   Reference& ref = result.reference;

@@ -160,15 +160,19 @@ std::string job_scene_text(const Plan& plan, const Job& job) {
   return scene_text(plan, job, job.parameters);
 }
 
-void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) {
-  const std::string name = job_folder_name(job.index) + "/scene.toml";
+namespace {
+
+// Checks `job`'s scene (named `name` in the loader's errors) with `check`; `who` says which job
+// or value it is in an error's message.
+void check_scene(const Plan& plan, const Job& job, const SceneCheck& check, const std::string& name,
+                 const std::string& who) {
   const std::string text = job_scene_text(plan, job);  // its own errors point into the plan
   try {
     check(text, name);
     return;
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::BadInput) throw;
-    const std::string what = describe_job(job) + ": " + e.what();
+    const std::string what = who + ": " + e.what();
     // Not about the scene text (the command's overrides: --duration against the scene's dt):
     // the plan's args.
     if (e.where().file.empty()) fail(plan.args_at, what);
@@ -186,8 +190,7 @@ void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) 
       const std::optional<Placed> at = placed(alone, p);
       const bool value = at && inside(e.where(), at->value) && !inside(e.where(), at->key);
       fail(value ? p.from : p.key->key_at,
-           describe_job(job) + ": " + e.what() +
-               (value ? "" : " (key path \"" + p.key->path + "\")"));
+           who + ": " + e.what() + (value ? "" : " (key path \"" + p.key->path + "\")"));
     }
   }
   // Only the combination fails (dt against duration, a body inside the floor): the first key.
@@ -195,7 +198,61 @@ void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) 
     check(text, name);
   } catch (const Error& e) {
     fail(job.parameters.empty() ? plan.scene_at : job.parameters.front().key->key_at,
-         describe_job(job) + ": " + e.what());
+         who + ": " + e.what());
+  }
+}
+
+// The ends of a random key's range as TOML text (uniform and integer: both ends; choice: every
+// value); a normal distribution has none (its draws are checked job by job).
+std::vector<std::string> range_ends(const Distribution& d) {
+  using Kind = Distribution::Kind;
+  switch (d.kind) {
+    case Kind::Integer:
+      return {std::to_string(d.lo), std::to_string(d.hi)};
+    case Kind::Choice:
+      return d.choices;
+    case Kind::Normal:
+      return {};
+    case Kind::Uniform:
+      break;
+  }
+  std::vector<std::string> ends;
+  for (const std::vector<double>* end : {&d.first, &d.second}) {
+    std::string text;
+    for (std::size_t i = 0; i < end->size(); ++i) text += (i ? ", " : "") + toml_number((*end)[i]);
+    ends.push_back(d.vector ? "[" + text + "]" : text);
+  }
+  return ends;
+}
+
+}  // namespace
+
+void check_job_scene(const Plan& plan, const Job& job, const SceneCheck& check) {
+  check_scene(plan, job, check, job_folder_name(job.index) + "/scene.toml", describe_job(job));
+}
+
+void check_plan_values(const Plan& plan, const SceneCheck& check) {
+  const std::size_t count = plan.random_count.value_or(1);
+  // Each random key at the ends of its range, the other keys as job 0 has them: an end the
+  // scene rejects is the distribution's fault, said before any job's draw shows it.
+  const Job first = make_job(plan, 0);
+  for (std::size_t k = 0; k < plan.random.size(); ++k) {
+    const std::size_t at = plan.grid.size() + k;  // keys(): grid first, then random
+    for (const std::string& end : range_ends(plan.random[k].distribution)) {
+      Job job = first;
+      job.parameters[at].value = end;
+      const std::string who =
+          "the plan's " + job.parameters[at].key->path + " at the end of its range (" + end + ")";
+      check_scene(plan, job, check, "plan-check/scene.toml", who);
+    }
+  }
+  // Job 0, and for each grid value the first job that has it (the other axes at their first).
+  check_job_scene(plan, first, check);
+  std::size_t stride = count;  // jobs between two values of the axis
+  for (std::size_t a = plan.grid.size(); a-- > 0;) {
+    for (std::size_t v = 1; v < plan.grid[a].values.size(); ++v)
+      check_job_scene(plan, make_job(plan, v * stride), check);
+    stride *= plan.grid[a].values.size();
   }
 }
 

@@ -35,6 +35,14 @@ std::string parameters(const Job& job) {
 
 }  // namespace
 
+std::string job_list_header(const Plan& plan) {
+  return header(plan);
+}
+
+std::string job_list_row(const Job& job) {
+  return parameters(job);
+}
+
 std::string job_list_csv(const Plan& plan, const std::vector<Job>& jobs) {
   std::string csv = header(plan) + "\n";
   for (const Job& job : jobs) csv += parameters(job) + "\n";

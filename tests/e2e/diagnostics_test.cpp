@@ -145,14 +145,18 @@ TEST(Adaptive, SceneToleranceAndStepStatisticsInRunJson) {
   const TestDir dir;
   write_scene(dir.path(), "drop.toml",
               replace(std::string(kDropScene), "duration = 0.5",
-                      "duration = 1.0\ndt = 0.05\nintegrator = \"adaptive\"\ntolerance = 1e-9"));
+                      "duration = 1.0\ndt = 0.01\nmax_step = 0.05\nintegrator = \"adaptive\"\n"
+                      "tolerance = 1e-9"));
   const RunResult r = run_tumble({"simulate", "drop.toml", "--out", "o"}, dir.path());
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   const nlohmann::json j = read_json(dir / "o/run.json");
   EXPECT_EQ(j["settings"]["simulation"]["integrator"], "adaptive");
   EXPECT_EQ(j["settings"]["simulation"]["tolerance"], 1e-9);
+  EXPECT_EQ(j["settings"]["simulation"]["dt_s"], 0.01);
+  EXPECT_EQ(j["settings"]["simulation"]["max_step_s"], 0.05);
   const nlohmann::json& a = j["adaptive"];
   EXPECT_EQ(a["tolerance"], 1e-9);
+  EXPECT_EQ(a["first_step_s"], 0.01);
   EXPECT_EQ(a["largest_step_s"], 0.05);
   EXPECT_GT(a["accepted_steps"].get<long>(), 0);
   EXPECT_GE(a["rejected_steps"].get<long>(), 0);
@@ -161,6 +165,61 @@ TEST(Adaptive, SceneToleranceAndStepStatisticsInRunJson) {
   // The first impact of the box (bottom face from 2.5 m) is where the fixed-step rk4 puts it.
   const Csv csv = read_csv(dir / "o/trajectory.csv");
   EXPECT_EQ(csv.rows.size(), 61u);
+}
+
+TEST(Adaptive, LargestStepDefaultsToTheSampleInterval) {
+  // No max_step: simulate's sample interval (1/rate) is the largest step, so every sample is a
+  // step boundary; dt (0.001) is only the first trial step.
+  const TestDir dir;
+  write_scene(dir.path(), "drop.toml",
+              replace(std::string(kDropScene), "duration = 0.5",
+                      "duration = 1.0\nintegrator = \"adaptive\""));
+  for (const char* rate : {"20", "50"}) {
+    const std::string out = std::string("o") + rate;
+    const RunResult r =
+        run_tumble({"simulate", "drop.toml", "--rate", rate, "--out", out}, dir.path());
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const nlohmann::json j = read_json(dir / out / "run.json");
+    EXPECT_EQ(j["adaptive"]["largest_step_s"], 1.0 / std::stod(rate));
+    EXPECT_EQ(j["settings"]["simulation"]["max_step_s"], 1.0 / std::stod(rate));
+    EXPECT_EQ(j["adaptive"]["first_step_s"], 0.001);
+    EXPECT_EQ(j["counts"]["steps"], std::stol(rate));  // one world step per sample interval
+  }
+}
+
+TEST(Adaptive, MaxStepIsCheckedAndIgnoredByFixedStepIntegrators) {
+  const TestDir dir;
+  // Checked like every number, whatever the integrator: FILE:LINE:COLUMN of the value.
+  for (const char* bad : {"max_step = 0.0", "max_step = -0.01", "max_step = \"big\""}) {
+    write_scene(
+        dir.path(), "bad.toml",
+        replace(std::string(kDropScene), "duration = 0.5", "duration = 0.5\n" + std::string(bad)));
+    const RunResult r = run_tumble({"simulate", "bad.toml", "--out", "o"}, dir.path());
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << describe(r);
+    EXPECT_NE(r.err.find("bad.toml:3:12: max_step in [simulation]"), std::string::npos)
+        << bad << ": " << r.err;
+  }
+  // A typo names the key meant.
+  write_scene(dir.path(), "typo.toml",
+              replace(std::string(kDropScene), "duration = 0.5", "duration = 0.5\nmax_stp = 0.1"));
+  const RunResult typo = run_tumble({"simulate", "typo.toml", "--out", "o"}, dir.path());
+  EXPECT_EQ(typo.exit_code, 2);
+  EXPECT_NE(typo.err.find("max_step"), std::string::npos) << typo.err;
+  // With rk4 it is read and ignored (as tolerance is), so --integrator can switch methods: the
+  // trajectory is that of the scene without it, and run.json says max_step_s null.
+  write_scene(dir.path(), "rk4.toml",
+              replace(std::string(kDropScene), "duration = 0.5", "duration = 0.5\nmax_step = 0.1"));
+  write_scene(dir.path(), "plain.toml", kDropScene);
+  ASSERT_EQ(run_tumble({"simulate", "rk4.toml", "--out", "a"}, dir.path()).exit_code, 0);
+  ASSERT_EQ(run_tumble({"simulate", "plain.toml", "--out", "b"}, dir.path()).exit_code, 0);
+  EXPECT_TRUE(read_file(dir / "a/trajectory.csv") == read_file(dir / "b/trajectory.csv"));
+  const nlohmann::json j = read_json(dir / "a/run.json");
+  EXPECT_TRUE(j["settings"]["simulation"]["max_step_s"].is_null());
+  EXPECT_FALSE(j.contains("adaptive") && !j["adaptive"].is_null());
+  const RunResult adaptive =
+      run_tumble({"simulate", "rk4.toml", "--integrator", "adaptive", "--out", "c"}, dir.path());
+  ASSERT_EQ(adaptive.exit_code, 0) << describe(adaptive);
+  EXPECT_EQ(read_json(dir / "c/run.json")["adaptive"]["largest_step_s"], 0.1);
 }
 
 TEST(Adaptive, ToleranceOutOfRangeIsAnError) {

@@ -201,6 +201,68 @@ TEST(Plot, SeveralBodiesAndTheirTotalEnergy) {
   EXPECT_LT(fit_line(all_v, all_py).worst, 0.02);
 }
 
+TEST(Plot, MarksImpactsNotABoxThatStopsSliding) {
+  // "box" slides on the floor (mu = 0.5) from 3 m/s and stops at t = v / (mu g) = 0.61 s: its
+  // only contact events are that stop (arrivals far below the rest speed). "top" falls tilted
+  // and bounces. Only top's bounces are marked, and its name is written once above a run of
+  // them, with no two labels overlapping.
+  const TestDir dir;
+  write_scene(dir.path(), "slide.toml", R"([simulation]
+duration = 2.0
+[floor]
+friction = 0.5
+[[body]]
+name = "box"
+shape = "box"
+size = [1.0, 1.0, 1.0]
+mass = 1.0
+position = [0.0, 0.5, 0.0]
+velocity = [3.0, 0.0, 0.0]
+[[body]]
+name = "top"
+shape = "box"
+size = [0.5, 0.5, 0.5]
+mass = 1.0
+position = [4.0, 2.0, 0.0]
+orientation = { axis = [1.0, 0.0, 1.0], degrees = 20.0 }
+)");
+  const RunResult r = run_tumble({"simulate", "slide.toml", "--plot", "--out", "o"}, dir.path());
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const nlohmann::json run = read_json(dir / "o/run.json");
+  ASSERT_GT(run["counts"]["impacts"].get<long>(), 10);  // the stop's events are contact events
+  const std::string svg = read_file(dir / "o/trajectory.svg");
+  const std::vector<SvgPanel> panels = parse_panels(svg);
+  ASSERT_EQ(panels.size(), 2u);
+  ASSERT_FALSE(panels[0].mark_xs.empty());
+  // The time axis: the first plotted point is t = 0 at the left edge; the marks are top's
+  // bounces, from its first landing (t ≈ 0.58 s) on, none at box's stop (0.612 s).
+  const auto count = [&](const std::string& needle) {
+    std::size_t n = 0;
+    for (std::size_t at = svg.find(needle); at != std::string::npos; at = svg.find(needle, at + 1))
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(count(">box</text>"), 2u) << "box is only in the two legends: it never bounced";
+  const std::size_t tops = count(">top</text>");
+  EXPECT_GE(tops, 3u);  // the legends and at least one mark
+  EXPECT_LT(tops, 2u + panels[0].mark_xs.size()) << "a run of top's impacts is named once";
+  // Mark labels (font size 10) do not overlap: each starts right of the one before ends, by
+  // the plot's own glyph estimate (0.6 em; a label is centred on its x).
+  const std::size_t group = svg.find("<g font-size=\"10\"");
+  ASSERT_NE(group, std::string::npos);
+  const std::string labels = svg.substr(group, svg.find("</g>", group) - group);
+  double last_right = -1e9;
+  for (std::size_t at = labels.find("<text x=\""); at != std::string::npos;
+       at = labels.find("<text x=\"", at + 1)) {
+    const double x = std::stod(labels.substr(at + 9));
+    const std::size_t open_end = labels.find('>', at);
+    const std::string text = labels.substr(open_end + 1, labels.find('<', open_end) - open_end - 1);
+    const double half = 0.3 * 10.0 * static_cast<double>(text.size());
+    EXPECT_GT(x - half, last_right) << text << " at " << x;
+    last_right = x + half;
+  }
+}
+
 TEST(Plot, SameRunTwiceIsByteIdentical) {
   const TestDir dir;
   for (const char* out : {"a", "b"}) {

@@ -118,9 +118,13 @@ TEST(Study, WritesCsvMarkdownAndSvgWithOneRowPerSetting) {
                     : i <= 15 ? "midpoint"
                     : i <= 20 ? "rk4"
                               : "adaptive");
-    // dt: the scene's 0.001 × 4, 2, 1, 1/2, 1/4 (adaptive: the scene's dt, its largest step).
+    // dt: the scene's 0.001 × 4, 2, 1, 1/2, 1/4 (adaptive: its largest step, by default the
+    // frame interval 1/60 s; the scene's dt is its first trial step).
     const char* dts[] = {"0.004", "0.002", "0.001", "5e-04", "0.00025"};
-    EXPECT_EQ(c[1], adaptive ? "0.001" : dts[(i - 1) % 5]) << csv[i];
+    if (adaptive)
+      EXPECT_EQ(std::stod(c[1]), 1.0 / 60.0) << csv[i];
+    else
+      EXPECT_EQ(c[1], dts[(i - 1) % 5]) << csv[i];
     EXPECT_EQ(c[2].empty(), !adaptive) << csv[i];
     EXPECT_FALSE(c[6].empty()) << "no error in " << csv[i];
   }
@@ -183,7 +187,8 @@ TEST(Study, ListsAndQuiet) {
   ASSERT_EQ(csv.size(), 4u);
   EXPECT_EQ(csv[1].rfind("rk4,0.002,,", 0), 0u) << csv[1];
   EXPECT_EQ(csv[2].rfind("rk4,0.001,,", 0), 0u) << csv[2];
-  EXPECT_EQ(csv[3].rfind("adaptive,0.001,1e-06,", 0), 0u) << csv[3];
+  // adaptive's dt column: its largest step, the frame interval 1/60 s.
+  EXPECT_EQ(csv[3].rfind("adaptive,0.016666666666666666,1e-06,", 0), 0u) << csv[3];
 }
 
 TEST(Study, ADivergedRunIsARowNotAFailure) {

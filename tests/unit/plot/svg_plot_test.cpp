@@ -7,6 +7,7 @@
 #include <limits>
 #include <locale>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -382,6 +383,123 @@ TEST(SvgPlot, LegendMovesToTheEmptiestCorner) {
   ASSERT_NE(box, std::string::npos);
   const std::size_t x_at = svg.rfind("<rect x=\"", box) + 9;
   EXPECT_LT(std::stod(svg.substr(x_at, svg.find('"', x_at) - x_at)), 320.0);
+}
+
+// The legend box of a one-panel figure (x, y, width, height), and every data point drawn before
+// it: marker centres and polyline vertices, with the polylines sampled every pixel.
+struct LegendCheck {
+  double x = 0, y = 0, w = 0, h = 0;
+  std::vector<std::pair<double, double>> ink;
+  bool found = false;
+};
+
+double attribute(const std::string& svg, std::size_t from, const std::string& name) {
+  const std::size_t at = svg.find(" " + name + "=\"", from) + name.size() + 3;
+  return std::stod(svg.substr(at, svg.find('"', at) - at));
+}
+
+LegendCheck legend_check(const std::string& svg) {
+  LegendCheck c;
+  const std::size_t box_end = svg.find("rx=\"3\"");
+  if (box_end == std::string::npos) return c;
+  const std::size_t box = svg.rfind("<rect ", box_end);
+  c.found = true;
+  c.x = attribute(svg, box, "x");
+  c.y = attribute(svg, box, "y");
+  c.w = attribute(svg, box, "width");
+  c.h = attribute(svg, box, "height");
+  const std::string data = svg.substr(0, box);
+  for (std::size_t at = data.find("<circle "); at != std::string::npos;
+       at = data.find("<circle ", at + 1))
+    c.ink.push_back({attribute(data, at, "cx"), attribute(data, at, "cy")});
+  for (std::size_t at = data.find("points=\""); at != std::string::npos;
+       at = data.find("points=\"", at + 1)) {
+    std::string list = data.substr(at + 8, data.find('"', at + 8) - at - 8);
+    for (char& ch : list)
+      if (ch == ',') ch = ' ';
+    std::istringstream in(list);
+    std::vector<std::pair<double, double>> vertices;
+    double px, py;
+    while (in >> px >> py) vertices.push_back({px, py});
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+      c.ink.push_back(vertices[i]);
+      if (i == 0) continue;
+      const auto [ax, ay] = vertices[i - 1];
+      const auto [bx, by] = vertices[i];
+      const int n = static_cast<int>(std::ceil(std::hypot(bx - ax, by - ay)));
+      for (int k = 1; k < n; ++k) c.ink.push_back({ax + (bx - ax) * k / n, ay + (by - ay) * k / n});
+    }
+  }
+  return c;
+}
+
+// No data point or line pixel inside the legend box (markers are drawn 3.5 px around their
+// centre, so their centres keep that far away).
+void expect_legend_covers_nothing(const std::string& svg) {
+  const LegendCheck c = legend_check(svg);
+  ASSERT_TRUE(c.found);
+  ASSERT_FALSE(c.ink.empty());
+  constexpr double kMarkerRadius = 3.5;
+  for (const auto& [px, py] : c.ink)
+    EXPECT_FALSE(px >= c.x - kMarkerRadius && px <= c.x + c.w + kMarkerRadius &&
+                 py >= c.y - kMarkerRadius && py <= c.y + c.h + kMarkerRadius)
+        << "(" << px << ", " << py << ") in the legend at (" << c.x << ", " << c.y << ") " << c.w
+        << "x" << c.h;
+}
+
+TEST(SvgPlot, LegendCoversNoPointOfTheWorkPrecisionPlot) {
+  expect_legend_covers_nothing(render_svg(work_precision_figure()));
+}
+
+TEST(SvgPlot, LegendFindsTheEmptyMiddleWhenEveryCornerIsTaken) {
+  // A cluster of points in each corner: the legend goes between them, inside the plot.
+  Panel p;
+  Series s;
+  s.name = "corners";
+  s.line = false;
+  for (const double cx : {0.0, 0.85})
+    for (const double cy : {0.0, 0.85})
+      for (int i = 0; i <= 3; ++i)
+        for (int j = 0; j <= 3; ++j) {
+          s.x.push_back(cx + 0.05 * i);
+          s.y.push_back(cy + 0.05 * j);
+        }
+  p.series.push_back(s);
+  Figure f;
+  f.panels.push_back(p);
+  const std::string svg = render_svg(f);
+  expect_legend_covers_nothing(svg);
+  const LegendCheck c = legend_check(svg);
+  double min_x = INFINITY, max_x = -INFINITY;
+  for (const auto& [px, py] : c.ink) {
+    min_x = std::min(min_x, px);
+    max_x = std::max(max_x, px);
+  }
+  EXPECT_GT(c.x, min_x);
+  EXPECT_LT(c.x + c.w, max_x);
+}
+
+TEST(SvgPlot, LegendStandsBesideAPlotWithNoEmptyPlace) {
+  // Lines criss-crossing the whole plot every few pixels: no place inside is empty, so the plot
+  // narrows and the legend stands to its right, still covering nothing.
+  Panel p;
+  for (int k = 0; k < 3; ++k) {
+    Series s;
+    s.name = "zigzag " + std::to_string(k);
+    s.marker = Marker::None;
+    for (int i = 0; i <= 200; ++i) {
+      s.x.push_back(i / 200.0);
+      s.y.push_back((i + k) % 2 == 0 ? 0.0 : 1.0);
+    }
+    p.series.push_back(s);
+  }
+  Figure f;
+  f.panels.push_back(p);
+  const std::string svg = render_svg(f);
+  expect_legend_covers_nothing(svg);
+  const LegendCheck c = legend_check(svg);
+  for (const auto& [px, py] : c.ink) EXPECT_LT(px, c.x);
+  EXPECT_LE(c.x + c.w, f.panel_width_px);
 }
 
 TEST(SvgPlot, VerticalMarksAreDrawnWithLabels) {
