@@ -176,8 +176,8 @@ int run_render(const RenderOptions& o, RenderSession* session) {
       pipeline.add_clip_sink(
           make_gif_sink(outputs->file("clip.gif"), width, height, fps, clip_frames, o.transparent));
     if (o.webp)
-      pipeline.add_clip_sink(
-          make_webp_sink(outputs->file("clip.webp"), width, height, fps, o.transparent));
+      pipeline.add_clip_sink(make_webp_sink(outputs->file("clip.webp"), width, height, fps,
+                                            clip_frames, o.transparent));
     std::vector<double> stills = o.stills;
     for (double& t : stills) t += 0.0;  // -0 names the same still as 0
     std::sort(stills.begin(), stills.end());
