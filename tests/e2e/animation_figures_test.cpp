@@ -150,7 +150,7 @@ TEST(Webp, LoopsForeverWithOneFramePerClipFrameInWholeMilliseconds) {
   }
   EXPECT_EQ(total, 500) << "the WebP lasts the clip's 0.5 s";
 
-  // libwebp's own reading, where its tools are installed (scripts/setup installs `webp`).
+  // libwebp's own reading, where its tools are installed (scripts/setup --tests installs `webp`).
   if (run_program("webpmux", {"-version"}, "/").exit_code == 0) {
     const RunResult info = run_program("webpmux", {"-info", fs::absolute(path).string()}, "/");
     EXPECT_EQ(info.exit_code, 0) << describe(info);

@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "run_tumble.hpp"
+#include "trajectory_csv.hpp"
 
 namespace tumble_e2e {
 namespace {
@@ -18,7 +19,7 @@ bool contains(const std::string& text, std::string_view part) {
   return text.find(part) != std::string::npos;
 }
 
-// A solid-colour 8x6 RGB PNG, drawn by the ffmpeg tool (scripts/setup installs it).
+// A solid-colour 8x6 RGB PNG, drawn by the ffmpeg tool (scripts/setup --tests installs it).
 void solid_png(const fs::path& file, const std::string& colour) {
   fs::create_directories(file.parent_path());
   const RunResult r =
