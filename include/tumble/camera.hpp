@@ -24,9 +24,18 @@ std::optional<std::size_t> followed_body(const Scene& scene);
 /// The point the scene's camera looks at when the bodies are as in `world`: the followed body's
 /// centre of mass, or camera.target.
 Vec3 camera_target(const Scene& scene, const World& world);
-/// View-projection of the scene's camera looking at `target`, at the scene's image aspect, in its
-/// projection (perspective with fov_deg, or orthographic ortho_height_m tall). The depth range
-/// follows the camera's distance to the target.
+/// Whether the camera moves with the body it follows: camera.follow without a stated position.
+/// It then keeps the offset position − target (camera_framing.hpp places it close enough for
+/// the body to fill a share of the picture); with a stated position it stays there and turns.
+bool camera_moves_with_target(const CameraSettings& camera);
+/// Where the scene's camera is when it looks at `target`: camera.position, or for a camera that
+/// moves with its body, target + (position − camera.target).
+Vec3 camera_eye(const Scene& scene, const Vec3& target);
+/// Where the scene's camera is for the bodies as they are in `world`.
+Vec3 camera_eye(const Scene& scene, const World& world);
+/// View-projection of the scene's camera looking at `target` from camera_eye(), at the scene's
+/// image aspect, in its projection (perspective with fov_deg, or orthographic ortho_height_m
+/// tall). The depth range follows the camera's distance to the target.
 Eigen::Matrix4d camera_view_projection(const Scene& scene, const Vec3& target);
 /// View-projection of the scene's camera for the bodies as they are in `world` (camera.follow
 /// included): what Renderer::draw() draws with.

@@ -41,6 +41,9 @@ struct CommonOptions {
   bool strict = false;  // render/simulate: a diagnostic warning ends the run with exit 4
 };
 
+/// Refuses an empty option value (`--out ""`, `--integrators ''`): empty would otherwise read
+/// as the option left out. Exit 2 through CLI11's parse errors.
+CLI::Validator non_empty();
 /// Registers the common options on a subcommand.
 void add_common_options(CLI::App& cmd, CommonOptions& o);
 /// Loads the scene (or the default) and applies the command-line overrides; throws

@@ -19,15 +19,27 @@ constexpr double kMaxSteps = 1e9;
 
 }  // namespace
 
+CLI::Validator non_empty() {
+  return CLI::Validator(
+      [](const std::string& value) {
+        return value.empty() ? std::string("an empty value; give one or leave the option out")
+                             : std::string();
+      },
+      "", "NON_EMPTY");
+}
+
 void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_option("scene", o.scene_path, "Scene file (TOML); omitted: the built-in default scene");
-  cmd.add_option("--out", o.out_dir, "Output folder (default: out/<scene-stem>/)");
+  cmd.add_option("--out", o.out_dir, "Output folder (default: out/<scene-stem>/)")
+      ->check(non_empty());
   cmd.add_option("--duration", o.duration_s, "Simulated seconds (overrides the scene)");
   cmd.add_option("--dt", o.dt_s, "Fixed physics step in seconds (overrides the scene)");
   cmd.add_option("--fps", o.fps, "Frames per second (overrides the scene)");
-  cmd.add_option("--size", o.size, "Image size WxH, e.g. 1280x720 (overrides the scene)");
+  cmd.add_option("--size", o.size, "Image size WxH, e.g. 1280x720 (overrides the scene)")
+      ->check(non_empty());
   cmd.add_option("--integrator", o.integrator,
-                 "euler | symplectic-euler | midpoint | rk4 | adaptive (overrides the scene)");
+                 "euler | symplectic-euler | midpoint | rk4 | adaptive (overrides the scene)")
+      ->check(non_empty());
   cmd.add_flag("--quiet,-q", o.quiet, "Print nothing but errors");
 }
 

@@ -31,7 +31,9 @@ SinkPtr make_png_image_sink(const StagedOutput& out,
 /// transparency.
 SinkPtr make_gif_sink(const StagedOutput& out, int width, int height, int fps, long clip_frames,
                       bool alpha);
-/// clip.webp (WebpWriter); `alpha`: keep the alpha channel.
-SinkPtr make_webp_sink(const StagedOutput& out, int width, int height, int fps, bool alpha);
+/// clip.webp (WebpWriter) for a clip of `clip_frames` frames at `fps`; `alpha`: keep the alpha
+/// channel.
+SinkPtr make_webp_sink(const StagedOutput& out, int width, int height, int fps, long clip_frames,
+                       bool alpha);
 
 }  // namespace tumble::cli

@@ -3,15 +3,44 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "commands.hpp"
 #include "tumble/error.hpp"
+#include "tumble/scene.hpp"
 #include "version_text.hpp"
+
+namespace {
+
+// "unknown subcommand "rendr" (did you mean "render"?); the subcommands are render, ..." when
+// the first word is neither an option nor a subcommand, else "": CLI11 alone would only say
+// that a subcommand is required.
+std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  const std::string word = argv[1];
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    if (sub->get_name() == word) return "";
+    names.push_back(sub->get_name());
+  }
+  std::string list;
+  for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  const std::optional<std::string> close =
+      tumble::closest_match(word, std::vector<std::string_view>(names.begin(), names.end()));
+  return "unknown subcommand \"" + word + "\"" +
+         (close ? " (did you mean \"" + *close + "\"?)" : std::string()) +
+         "; the subcommands are " + list;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace tumble;
-  // First of all: a Ctrl-C, SIGTERM, SIGHUP or SIGQUIT that comes while the command line is still being read
-  // (a slow start on a busy machine) must end the run cleanly too, not kill it.
+  // First of all: a Ctrl-C, SIGTERM, SIGHUP or SIGQUIT that comes while the command line is still
+  // being read (a slow start on a busy machine) must end the run cleanly too, not kill it.
   cli::install_interrupt_handlers();
   CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};
   app.set_version_flag("--version", cli::version_text);
@@ -38,7 +67,9 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // CLI11 has its own exit codes (e.g. 105); a command-line mistake is bad input: 2.
-    std::fprintf(stderr, "tumble: error: %s\nRun 'tumble --help' for usage.\n", e.what());
+    const std::string unknown = unknown_subcommand(app, argc, argv);
+    std::fprintf(stderr, "tumble: error: %s\nRun 'tumble --help' for usage.\n",
+                 unknown.empty() ? e.what() : unknown.c_str());
     return static_cast<int>(ErrorKind::BadInput);
   }
 

@@ -208,8 +208,8 @@ int run_render(const RenderOptions& o, RenderSession* session) {
       pipeline.add_clip_sink(
           make_gif_sink(outputs->file("clip.gif"), width, height, fps, clip_frames, o.transparent));
     if (o.webp)
-      pipeline.add_clip_sink(
-          make_webp_sink(outputs->file("clip.webp"), width, height, fps, o.transparent));
+      pipeline.add_clip_sink(make_webp_sink(outputs->file("clip.webp"), width, height, fps,
+                                            clip_frames, o.transparent));
     for (const double t : stills)
       pipeline.add_picture(still_picture(
           t, make_png_image_sink(outputs->file("still_" + format_double(t) + ".png"))));
@@ -255,10 +255,20 @@ int run_render(const RenderOptions& o, RenderSession* session) {
     write_run_report(outputs->file("run.json").staged, report);
     outputs->commit();
     if (!o.common.quiet) {
-      const std::string stills_text =
-          stills.empty() ? "" : " and " + std::to_string(stills.size()) + " still(s)";
-      std::printf("tumble: rendered %ld frames (%dx%d, %d fps)%s on %s in %.2f s into %s\n",
-                  clip_frames, width, height, fps, stills_text.c_str(),
+      // What was drawn: the clip's frames, stills, a strobe (a strobe alone is not "0 frames").
+      std::vector<std::string> drawn;
+      if (clip_frames > 0)
+        drawn.push_back(std::to_string(clip_frames) + " frames (" + std::to_string(width) + "x" +
+                        std::to_string(height) + ", " + std::to_string(fps) + " fps)");
+      if (!stills.empty())
+        drawn.push_back(std::to_string(stills.size()) +
+                        (stills.size() == 1 ? " still" : " stills"));
+      if (o.strobe) drawn.push_back("strobe.png (" + std::to_string(*o.strobe) + " poses)");
+      std::string what;
+      for (std::size_t i = 0; i < drawn.size(); ++i)
+        what += (i == 0 ? "" : i + 1 == drawn.size() ? " and " : ", ") + drawn[i];
+      if (clip_frames == 0) what += " at " + std::to_string(width) + "x" + std::to_string(height);
+      std::printf("tumble: rendered %s on %s in %.2f s into %s\n", what.c_str(),
                   gl.info().gl_renderer.c_str(), report.times.total_s, dir.c_str());
     }
     return report_diagnostics(o.common, pipeline.world().diagnostics());

@@ -83,8 +83,11 @@ void add_simulate_command(CLI::App& app, SimulateOptions& o) {
       "simulate", "Simulate only (no GL): trajectory.csv and run.json in the output folder");
   add_common_options(*cmd, o.common);
   add_strict_option(*cmd, o.common);
-  cmd->add_option("--rate", o.rate_hz, "Sample rate in Hz (default: the scene's fps)");
-  cmd->add_flag("--every-step", o.every_step, "Sample at every step boundary instead");
+  CLI::Option* rate =
+      cmd->add_option("--rate", o.rate_hz, "Sample rate in Hz (default: the scene's fps)");
+  // Either a rate or every step: both would leave one of them silently unused.
+  cmd->add_flag("--every-step", o.every_step, "Sample at every step boundary instead")
+      ->excludes(rate);
   cmd->add_flag("--plot", o.plot,
                 "Also write trajectory.svg: height and energy of each body over time, impacts "
                 "marked");

@@ -147,12 +147,15 @@ void add_study_command(CLI::App& app, StudyOptions& o) {
       ->description("Not for study, which runs every integrator: use --integrators LIST");
   cmd->add_option("--integrators", o.integrators,
                   "Comma-separated integrators (default: euler,symplectic-euler,midpoint,rk4,"
-                  "adaptive)");
+                  "adaptive)")
+      ->check(non_empty());
   cmd->add_option(
-      "--dts", o.dts,
-      "Comma-separated fixed steps in seconds (default: the scene's dt x 4,2,1,1/2,1/4)");
+         "--dts", o.dts,
+         "Comma-separated fixed steps in seconds (default: the scene's dt x 4,2,1,1/2,1/4)")
+      ->check(non_empty());
   cmd->add_option("--tolerances", o.tolerances,
-                  "Comma-separated adaptive tolerances (default: 1e-4,1e-6,1e-8,1e-10)");
+                  "Comma-separated adaptive tolerances (default: 1e-4,1e-6,1e-8,1e-10)")
+      ->check(non_empty());
   cmd->add_option("--target-error", o.target_error_m,
                   "Also name the cheapest setting whose error is at most this many metres");
   cmd->add_option("--jobs,-j", o.jobs, "Runs in parallel (default: the hardware's threads)");

@@ -186,7 +186,8 @@ void add_sweep_command(CLI::App& app, SweepOptions& o) {
       "sweep", "Run many scenes from one plan (a grid and/or random draws), locally or sharded");
   cmd->add_option("plan", o.plan_path, "Sweep plan (TOML): scene, command, args, [grid], [random]")
       ->required();
-  cmd->add_option("--out", o.out_dir, "Output folder (default: out/<plan-stem>/)");
+  cmd->add_option("--out", o.out_dir, "Output folder (default: out/<plan-stem>/)")
+      ->check(non_empty());
   cmd->add_flag("--list", o.list, "Print the jobs as CSV (index and parameters); run nothing");
   cmd->add_flag("--collect", o.collect,
                 "Write OUT/sweep.csv; exit 1 naming the jobs that are missing or failed");

@@ -53,12 +53,26 @@ Vec3 camera_target(const Scene& scene, const World& world) {
   return i && *i < world.bodies().size() ? world.bodies()[*i].state.x : scene.camera.target;
 }
 
+bool camera_moves_with_target(const CameraSettings& camera) {
+  return camera.follow && !camera.position_given;
+}
+
+Vec3 camera_eye(const Scene& scene, const Vec3& target) {
+  const CameraSettings& cam = scene.camera;
+  return camera_moves_with_target(cam) ? Vec3(target + (cam.position - cam.target)) : cam.position;
+}
+
+Vec3 camera_eye(const Scene& scene, const World& world) {
+  return camera_eye(scene, camera_target(scene, world));
+}
+
 Mat4 camera_view_projection(const Scene& scene, const Vec3& target) {
   const CameraSettings& cam = scene.camera;
-  const Mat4 view = look_at(cam.position, target, cam.up);
+  const Vec3 eye = camera_eye(scene, target);
+  const Mat4 view = look_at(eye, target, cam.up);
   // Depth range from the camera's distance to the scene: a near plane too close wastes depth
   // precision, too far clips the bodies.
-  const double distance = (cam.position - target).norm();
+  const double distance = (eye - target).norm();
   const double near = std::max(0.01, 0.02 * distance), far = 200.0 + 4.0 * distance;
   const double aspect = double(scene.render.width) / scene.render.height;
   // The same eye, view axis and depth range in both projections: an orthographic camera differs

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <optional>
 
+#include "tumble/camera.hpp"
 #include "tumble/error.hpp"
 #include "tumble/sampler.hpp"
 
@@ -54,6 +56,33 @@ CameraSettings fit_camera(const CameraSettings& camera, std::span<const Vec3> po
   return c;
 }
 
+CameraSettings follow_camera(const CameraSettings& camera, const Vec3& centre, double radius_m,
+                             double aspect, bool fit_ortho_height) {
+  assert(radius_m > 0.0 && aspect > 0.0);
+  CameraSettings c = camera;
+  c.target = centre;
+  // The sphere's diameter 2r seen at distance D spans 2r / (2 D tan(fov/2)) of the height
+  // (nearly: its silhouette is a little wider, 1 / sqrt(1 - (r/D)^2), 3 % at the default fov).
+  const double share = kFollowShare * std::min(1.0, aspect);
+  const double tan_y = std::tan(0.5 * radians(c.fov_deg));
+  // Two radii at least: a very wide field of view must not put the eye inside the body.
+  const double distance = std::max(radius_m / (share * tan_y), 2.0 * radius_m);
+  if (c.projection == Projection::Orthographic && fit_ortho_height)
+    c.ortho_height_m = 2.0 * radius_m / share;
+  c.position = c.target + distance * kFramingDirection.normalized();
+  c.framed = true;
+  return c;
+}
+
+double bounding_radius(const Scene& scene, const World& world, std::size_t i) {
+  const RigidBody& b = world.bodies()[i];
+  // Drawn as a sphere of diameter `size` (body_points).
+  if (b.is_particle() || b.is_sphere()) return 0.5 * scene.bodies[i].size.maxCoeff();
+  double r = 0.0;
+  for (const Vec3& v : b.vertices()) r = std::max(r, v.norm());  // about the centre of mass
+  return r;
+}
+
 void body_points(const Scene& scene, const World& world, std::vector<Vec3>& points) {
   const std::vector<RigidBody>& bodies = world.bodies();
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -75,6 +104,15 @@ void body_points(const Scene& scene, const World& world, std::vector<Vec3>& poin
 CameraSettings frame_camera(const Scene& scene, const WorldDef& def) {
   const CameraSettings& stated = scene.camera;
   if (stated.position_given) return stated;
+  const double aspect = double(scene.render.width) / scene.render.height;
+  if (const std::optional<std::size_t> i = followed_body(scene)) {
+    // A followed body is framed alone, and the camera moves with it: no run to look at.
+    const World start(def);
+    const double radius = bounding_radius(scene, start, *i);
+    if (radius > 0.0)
+      return follow_camera(stated, start.bodies()[*i].state.x, radius, aspect,
+                           !stated.ortho_height_given);
+  }
   World world(def);
   Sampler sampler(world);
   std::vector<Vec3> points;
@@ -89,7 +127,6 @@ CameraSettings frame_camera(const Scene& scene, const WorldDef& def) {
     // the same error when it runs and exits with it; `study` keeps the run as a diverged row.
     if (points.empty()) throw;
   }
-  const double aspect = double(scene.render.width) / scene.render.height;
   return fit_camera(stated, points, aspect, !stated.target_given, !stated.ortho_height_given);
 }
 

@@ -62,6 +62,13 @@ bool has_extension(const char* list, std::string_view name) {
   return false;
 }
 
+// "there is only 1 EGL device", "there are only 2 EGL devices", "there is no EGL device".
+std::string egl_device_count_text(std::size_t count) {
+  if (count == 0) return "there is no EGL device";
+  if (count == 1) return "there is only 1 EGL device";
+  return "there are only " + std::to_string(count) + " EGL devices";
+}
+
 std::vector<EGLDeviceEXT> query_devices() {
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!has_extension(client, "EGL_EXT_device_enumeration") &&
@@ -152,9 +159,9 @@ EglContext::EglContext(int device) {
   bool ok = false;
   if (device >= 0) {
     if (static_cast<std::size_t>(device) >= devices.size())
-      throw Error(ErrorKind::Environment, "--egl-device " + std::to_string(device) +
-                                              ": there are only " + std::to_string(devices.size()) +
-                                              " EGL devices (see 'tumble info')");
+      throw Error(ErrorKind::Environment, "--egl-device " + std::to_string(device) + ": " +
+                                              egl_device_count_text(devices.size()) +
+                                              " (see 'tumble info')");
     ok = attempt("device " + std::to_string(device), device_display(std::size_t(device)));
   } else {
     // GPUs first; then Mesa surfaceless (llvmpipe); then a software device as the last resort.

@@ -196,10 +196,11 @@ struct Renderer::Impl {
   Eigen::Vector4d eye(const World& world) const {
     const CameraSettings& cam = scene.camera;
     if (cam.projection == Projection::Orthographic) {
-      const Vec3 d = (cam.position - camera_target(scene, world)).normalized();
+      const Vec3 d = (camera_eye(scene, world) - camera_target(scene, world)).normalized();
       return {d.x(), d.y(), d.z(), 0.0};
     }
-    return {cam.position.x(), cam.position.y(), cam.position.z(), 1.0};
+    const Vec3 at = camera_eye(scene, world);  // moves with a followed body
+    return {at.x(), at.y(), at.z(), 1.0};
   }
 
   // Where the floor fades away. A perspective camera sees it shrink towards a horizon: it fades
@@ -218,7 +219,7 @@ struct Renderer::Impl {
     const CameraSettings& cam = scene.camera;
     FloorFade f;
     const Vec3 target = camera_target(scene, world);
-    const Vec3 view = target - cam.position;
+    const Vec3 view = target - camera_eye(scene, world);
     if (cam.projection != Projection::Orthographic) {
       f.centre = Eigen::Vector2d(target.x(), target.z());
       f.start_m = std::max(f.start_m, 1.2 * view.norm());

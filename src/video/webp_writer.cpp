@@ -58,14 +58,47 @@ bool set_loop_and_end(std::string& webp, std::uint32_t end_ms) {
 
 }  // namespace
 
+WebpTiming WebpTiming::for_clip(int fps, long clip_frames) {
+  assert(fps > 0);
+  WebpTiming t;
+  t.fps = fps;
+  // Every frame lasts at least floor(1000 / fps) ms: >= 11 ms (plays as written) up to 90 fps.
+  // Above, the smallest step with 1000·step / fps >= 20 ms: ceil(fps / 50).
+  t.frame_step = 11 * fps <= 1000 ? 1 : (fps + 49) / 50;
+  t.clip_frames = clip_frames;
+  return t;
+}
+
+long WebpTiming::frames() const {
+  const long n = (clip_frames + frame_step - 1) / frame_step;
+  // The last of n frames starts at clip frame (n-1)·step: when fewer than `step` clip frames
+  // are left it would be shorter than every other, so the frame before lasts to the end.
+  if (n > 1 && (n - 1) * frame_step + frame_step > clip_frames) return n - 1;
+  return n;
+}
+
+bool WebpTiming::keeps(long k) const {
+  return k % frame_step == 0 && k / frame_step < frames();
+}
+
+long WebpTiming::start_ms(long j) const {
+  // round(1000·j·step / fps), halves up, in integers: exact for any clip length.
+  return static_cast<long>((2000LL * j * frame_step + fps) / (2LL * fps));
+}
+
+long WebpTiming::end_ms() const {
+  return static_cast<long>((2000LL * clip_frames + fps) / (2LL * fps));
+}
+
+int WebpTiming::duration_ms(long j) const {
+  return static_cast<int>((j + 1 < frames() ? start_ms(j + 1) : end_ms()) - start_ms(j));
+}
+
 struct WebpWriter::Impl {
   [[noreturn]] void fail(const std::string& what, int code) const {
     throw Error(ErrorKind::Environment, "cannot write \"" + final_path.string() + "\": " + what +
                                             ": " + av_error_text(code));
   }
-
-  // Start of frame k: round(1000·k / fps) ms, halves up, in integers.
-  std::int64_t start_ms(long k) const { return (2000LL * k + settings.fps) / (2LL * settings.fps); }
 
   void encode(const AVFrame* picture) {
     int result = avcodec_send_frame(codec.get(), picture);
@@ -82,12 +115,14 @@ struct WebpWriter::Impl {
   }
 
   WebpSettings settings;
+  WebpTiming timing;
   fs::path final_path;
   CodecContextPtr codec;
   FramePtr frame;
   PacketPtr packet;
   std::string assembled;
-  long frames = 0;
+  long offered = 0;  // clip frames offered
+  long frames = 0;   // WebP frames encoded
   bool finished = false;
 };
 
@@ -95,6 +130,7 @@ WebpWriter::WebpWriter(const fs::path& path, const WebpSettings& settings)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.settings = settings;
+  m.timing = WebpTiming::for_clip(settings.fps, settings.clip_frames);
   m.final_path = path;
   if (settings.width < 1 || settings.height < 1 || settings.width > kMaxSide ||
       settings.height > kMaxSide)
@@ -133,6 +169,7 @@ WebpWriter::~WebpWriter() = default;
 void WebpWriter::add_frame(const std::uint8_t* rgba, std::ptrdiff_t stride, bool bottom_up) {
   Impl& m = *impl_;
   assert(!m.finished);
+  if (!m.timing.keeps(m.offered++)) return;
   const int w = m.settings.width, h = m.settings.height;
   int result = av_frame_make_writable(m.frame.get());
   if (result < 0) m.fail("frame buffers", result);
@@ -148,7 +185,7 @@ void WebpWriter::add_frame(const std::uint8_t* rgba, std::ptrdiff_t stride, bool
       std::memcpy(out, &word, 4);
     }
   }
-  m.frame->pts = m.start_ms(m.frames);
+  m.frame->pts = m.timing.start_ms(m.frames);
   m.encode(m.frame.get());
   ++m.frames;
 }
@@ -156,11 +193,20 @@ void WebpWriter::add_frame(const std::uint8_t* rgba, std::ptrdiff_t stride, bool
 void WebpWriter::finish() {
   Impl& m = *impl_;
   assert(!m.finished);
+  assert(m.frames == m.timing.frames() && "every clip frame offered");
   m.encode(nullptr);
-  if (!set_loop_and_end(m.assembled, static_cast<std::uint32_t>(m.start_ms(m.frames))))
+  if (!set_loop_and_end(m.assembled, static_cast<std::uint32_t>(m.timing.end_ms())))
     m.fail("libwebp_anim gave no animation", AVERROR_BUG);
   write_file_atomically(m.final_path, m.assembled);
   m.finished = true;
+}
+
+bool WebpWriter::keeps_next_frame() const {
+  return impl_->timing.keeps(impl_->offered);
+}
+
+const WebpTiming& WebpWriter::timing() const {
+  return impl_->timing;
 }
 
 long WebpWriter::frames() const {
@@ -169,8 +215,7 @@ long WebpWriter::frames() const {
 
 std::vector<int> WebpWriter::durations_ms() const {
   std::set<int> distinct;
-  for (long k = 0; k < impl_->frames; ++k)
-    distinct.insert(static_cast<int>(impl_->start_ms(k + 1) - impl_->start_ms(k)));
+  for (long j = 0; j < impl_->frames; ++j) distinct.insert(impl_->timing.duration_ms(j));
   return {distinct.begin(), distinct.end()};
 }
 

@@ -150,7 +150,7 @@ TEST(Webp, LoopsForeverWithOneFramePerClipFrameInWholeMilliseconds) {
   }
   EXPECT_EQ(total, 500) << "the WebP lasts the clip's 0.5 s";
 
-  // libwebp's own reading, where its tools are installed (scripts/setup installs `webp`).
+  // libwebp's own reading, where its tools are installed (scripts/setup --tests installs `webp`).
   if (run_program("webpmux", {"-version"}, "/").exit_code == 0) {
     const RunResult info = run_program("webpmux", {"-info", fs::absolute(path).string()}, "/");
     EXPECT_EQ(info.exit_code, 0) << describe(info);
@@ -163,12 +163,54 @@ TEST(Webp, LoopsForeverWithOneFramePerClipFrameInWholeMilliseconds) {
   const nlohmann::json& w = j["figures"]["webp"];
   ASSERT_TRUE(w.is_object()) << j.dump(2);
   EXPECT_EQ(w["frames"], 30);
+  EXPECT_EQ(w["frame_step"], 1);
   EXPECT_EQ(w["rate_hz"], 60.0);
   EXPECT_EQ(w["delays_ms"], nlohmann::json::array({16, 17}));
   EXPECT_EQ(w["duration_s"], 0.5);
   EXPECT_EQ(j["outputs"][0]["path"], "o/clip.webp");
   EXPECT_EQ(j["outputs"][0]["sha256"], system_sha256(path));
   EXPECT_TRUE(j["wall_time"]["webp_s"].is_number());
+}
+
+// Browsers play a WebP frame of 10 ms or less as 100 ms: a 120 fps clip keeps every 3rd frame
+// (25 ms, 40 frames/s). 0.51 s at 120 fps is 61 clip frames, not a whole number of steps: the
+// last kept frame (clip frame 60, 8 ms) is left out and frame 57 lasts to the end, so the loop
+// lasts round(1000·61/120) = 508 ms, the clip's 508.3 ms to the millisecond.
+TEST(Webp, At120FpsEveryFrameLastsAtLeast20MsAndTheLoopLastsTheClip) {
+  const TestDir dir;
+  const RunResult r = run_tumble({"render", side_view(), "--webp", "--no-mp4", "--fps", "120",
+                                  "--duration", "0.51", "--size", "240x100", "--out", "o"},
+                                 dir.path());
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const fs::path path = dir / "o/clip.webp";
+  const WebpFile webp = parse_webp(read_file(path));
+  ASSERT_TRUE(webp.valid);
+  ASSERT_TRUE(webp.loop_count.has_value());
+  EXPECT_EQ(*webp.loop_count, 0);
+  ASSERT_EQ(webp.durations_ms.size(), 20u) << "clip frames 0, 3, ..., 57";
+  long total = 0;
+  for (std::size_t j = 0; j < webp.durations_ms.size(); ++j) {
+    EXPECT_GE(webp.durations_ms[j], 20) << "frame " << j << " would play as 100 ms";
+    total += webp.durations_ms[j];
+  }
+  EXPECT_EQ(webp.durations_ms.back(), 33);
+  const double clip_ms = 1000.0 * 61 / 120;
+  EXPECT_LE(std::abs(double(total) - clip_ms), 0.5) << "the loop lasts the clip";
+  if (run_program("webpmux", {"-version"}, "/").exit_code == 0) {
+    const RunResult info = run_program("webpmux", {"-info", fs::absolute(path).string()}, "/");
+    EXPECT_NE(info.out.find("Number of frames: 20"), std::string::npos) << info.out;
+  }
+  // run.json says what rate the WebP carries, as it does for the GIF.
+  nlohmann::json j = read_json(dir / "o/run.json");
+  const nlohmann::json& w = j["figures"]["webp"];
+  ASSERT_TRUE(w.is_object()) << j.dump(2);
+  EXPECT_EQ(w["frames"], 20);
+  EXPECT_EQ(w["frame_step"], 3);
+  EXPECT_EQ(w["rate_hz"], 40.0);
+  EXPECT_EQ(w["delays_ms"], nlohmann::json::array({25, 33}));
+  EXPECT_EQ(w["exact"], true);
+  EXPECT_EQ(w["duration_s"], 0.508);
+  EXPECT_EQ(j["counts"]["frames"], 61);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -237,6 +237,39 @@ TEST(BadInput, DtLongerThanAShortRunSaysHowLongTheRunIs) {
       << "a run of 1e-7 s is reported as 0 s long: " << r.err;
 }
 
+// docs/scene.md's "Errors" examples are what tumble prints: each message there (after its
+// FILE:LINE:COLUMN) is the message of a scene made to have that mistake.
+TEST(BadInput, SceneDocExamplesAreTheRealMessages) {
+  const std::string doc = read_file(source_dir() / "docs/scene.md");
+  std::size_t at = doc.find("\n## Errors\n");
+  ASSERT_NE(at, std::string::npos);
+  at = doc.find("```\n", at) + 4;
+  const std::vector<std::string> examples = split(doc.substr(at, doc.find("```", at) - at), '\n');
+  const std::vector<std::string> scenes = {
+      "[[body]]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\nmass = 1.0\nrestitusion = 0.5\n",
+      "[simulation]\nintegrator = \"rk5\"\n[[body]]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\n"
+      "mass = 1.0\n",
+      "[render]\nfps = 0\n[[body]]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\nmass = 1.0\n",
+      "[[body]]\nshape = \"box\"\nsize = [1.0, 1.0, 1.0]\n"};
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < examples.size(); ++i) {
+    if (examples[i].empty()) continue;
+    ASSERT_LT(checked, scenes.size()) << "a new example needs its scene here: " << examples[i];
+    // "drop.toml:14:1: message" -> "message"
+    const std::size_t colon = examples[i].find(": ");
+    ASSERT_NE(colon, std::string::npos) << examples[i];
+    const TestDir dir;
+    write_file(dir / "drop.toml", scenes[checked]);
+    const RunResult r = simulate(dir, "drop.toml");
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    const std::string printed = first_line(r.err);
+    EXPECT_TRUE(printed.ends_with(": " + examples[i].substr(colon + 2)))
+        << "docs/scene.md says: " << examples[i] << "\ntumble prints: " << printed;
+    ++checked;
+  }
+  EXPECT_EQ(checked, scenes.size());
+}
+
 TEST(BadInput, ZeroRate) {
   const TestDir dir;
   expect_bad_input(simulate(dir, "", {"--rate", "0"}), dir, "", {"--rate"});
@@ -259,10 +292,43 @@ TEST(BadInput, NoSubcommand) {
 }
 
 TEST(BadInput, UnknownSubcommand) {
+  // Named, with the real ones listed (CLI11 alone says "A subcommand is required").
   const TestDir dir;
   const RunResult r = run_tumble({"frobnicate"}, dir.path());
-  EXPECT_EQ(r.exit_code, 2) << describe(r);
-  EXPECT_TRUE(r.err.starts_with("tumble: error: ")) << r.err;
+  expect_bad_input(r, dir, "",
+                   {"unknown subcommand \"frobnicate\"; the subcommands are render, simulate, "
+                    "study, sweep, info, diff"});
+  EXPECT_EQ(r.err.find("A subcommand is required"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // A typo gets the subcommand that was probably meant.
+  const RunResult typo = run_tumble({"rendr", "--size", "64x48"}, dir.path());
+  expect_bad_input(typo, dir, "", {"unknown subcommand \"rendr\" (did you mean \"render\"?)"});
+}
+
+// An empty value would read as the option left out (--out "" silently meant out/default/).
+TEST(BadInput, EmptyOptionValues) {
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{"simulate", "--out", ""},
+                                             {"render", "--no-mp4", "--still", "0", "--out", ""},
+                                             {"simulate", "--size", ""},
+                                             {"simulate", "--integrator", ""},
+                                             {"study", "--integrators", ""},
+                                             {"study", "--dts", ""},
+                                             {"study", "--tolerances", ""}}) {
+    SCOPED_TRACE(args[0] + " " + args[args.size() - 2]);
+    const TestDir dir;
+    const RunResult r = run_tumble(args, dir.path());
+    expect_bad_input(r, dir, "", {args[args.size() - 2], "an empty value"});
+    EXPECT_FALSE(fs::exists(dir / "out")) << "ran into the default folder";
+  }
+}
+
+TEST(BadInput, RateAndEveryStepTogether) {
+  const TestDir dir;
+  const RunResult r = simulate(dir, "", {"--rate", "30", "--every-step"});
+  expect_bad_input(r, dir, "", {"--rate excludes --every-step"});
+  const RunResult reversed = simulate(dir, "", {"--every-step", "--rate", "30"});
+  expect_bad_input(reversed, dir, "", {"--rate excludes --every-step"});
 }
 
 }  // namespace

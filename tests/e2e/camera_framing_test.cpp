@@ -5,6 +5,8 @@
 // levels: anti-aliased edges count too). No body pixel may touch the image border.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <regex>
 
 #include "run_tumble.hpp"
@@ -37,14 +39,18 @@ struct FramingCheck {
   long frames = 0;
   long frames_with_body_on_border = 0;
   long frames_without_body = 0;
-  nlohmann::json camera;  // run.json settings.camera
+  int smallest_body_rows = 0;  // of the frames with a body: the fewest rows its pixels span
+  nlohmann::json camera;       // run.json settings.camera
 };
 
 // Renders `scene_text` (written into `dir`, which holds any meshes it names) in two colours and
-// checks every frame. `extra`: more options for both renders.
+// checks every frame, at kWidth x kHeight or `width` x `height`. `extra`: more options for both
+// renders.
 FramingCheck check_framing(const fs::path& dir, const std::string& scene_text,
-                           const std::vector<std::string>& extra = {}) {
+                           const std::vector<std::string>& extra = {}, int width = kWidth,
+                           int height = kHeight) {
   FramingCheck check;
+  check.smallest_body_rows = height;
   std::string rgb[2];
   const char* colors[2] = {"#ff2020", "#2020ff"};
   for (int i = 0; i < 2; ++i) {
@@ -52,7 +58,7 @@ FramingCheck check_framing(const fs::path& dir, const std::string& scene_text,
     write_file(dir / (name + ".toml"), recoloured(scene_text, colors[i]));
     std::vector<std::string> args = {
         "render", name + ".toml", "--no-mp4",
-        "--png",  "--size",       std::to_string(kWidth) + "x" + std::to_string(kHeight),
+        "--png",  "--size",       std::to_string(width) + "x" + std::to_string(height),
         "--out",  name,           "--quiet"};
     args.insert(args.end(), extra.begin(), extra.end());
     const RunResult r = run_tumble(args, dir);
@@ -60,25 +66,29 @@ FramingCheck check_framing(const fs::path& dir, const std::string& scene_text,
     rgb[i] = frames_rgb(dir / name / "frames");
     if (i == 0) check.camera = read_json(dir / name / "run.json")["settings"]["camera"];
   }
-  const std::size_t frame_bytes = std::size_t(kWidth) * kHeight * 3;
+  const std::size_t frame_bytes = std::size_t(width) * height * 3;
   EXPECT_EQ(rgb[0].size(), rgb[1].size());
   EXPECT_GT(rgb[0].size(), 0u);
   check.frames = long(rgb[0].size() / frame_bytes);
   for (long f = 0; f < check.frames; ++f) {
     bool any = false, border = false;
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
-        const std::size_t at = std::size_t(f) * frame_bytes + (std::size_t(y) * kWidth + x) * 3;
+    int top = height, bottom = -1;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::size_t at = std::size_t(f) * frame_bytes + (std::size_t(y) * width + x) * 3;
         bool body = false;
         for (int c = 0; c < 3; ++c)
           body |= std::abs(int(static_cast<unsigned char>(rgb[0][at + c])) -
                            int(static_cast<unsigned char>(rgb[1][at + c]))) > 8;
         if (!body) continue;
         any = true;
-        border |= x == 0 || y == 0 || x == kWidth - 1 || y == kHeight - 1;
+        border |= x == 0 || y == 0 || x == width - 1 || y == height - 1;
+        top = std::min(top, y);
+        bottom = std::max(bottom, y);
       }
     check.frames_with_body_on_border += border;
     check.frames_without_body += !any;
+    if (any) check.smallest_body_rows = std::min(check.smallest_body_rows, bottom - top + 1);
   }
   return check;
 }
@@ -147,6 +157,35 @@ angular_velocity = [0.0, 0.0, -3.0]
   const Csv t = read_csv(dir / "sim/trajectory.csv");  // columns t,body,x,...
   ASSERT_FALSE(t.rows.empty());
   EXPECT_GT(t.value(t.rows.size() - 1, 2), 45.0) << "the throw must really go about 50 m";
+}
+
+// camera.follow without a position (issue 20): framing the whole throw would show the 0.5 m box
+// 6 px tall at 480x270; the camera moves with it instead, so it is at least a sixth of the
+// picture's height (45 px) in every frame, and never touches the edge.
+TEST(CameraFraming, AFollowedThrownBoxFillsASixthOfThePictureInEveryFrame) {
+  const TestDir dir;
+  const FramingCheck c = check_framing(dir.path(), R"([simulation]
+duration = 4.0
+[render]
+fps = 10
+[floor]
+[camera]
+follow = "box"
+[[body]]
+name = "box"
+shape = "box"
+size = [0.5, 0.5, 0.5]
+mass = 1.0
+position = [0.0, 1.0, 0.0]
+velocity = [7.2, 9.6, 0.0]
+angular_velocity = [1.0, 2.0, 3.0]
+)",
+                                       {}, 480, 270);
+  expect_framed(c, 40);
+  EXPECT_GE(c.smallest_body_rows, 270 / 6) << "the followed box is too small in some frame";
+  std::printf("[ followed ] 0.5 m box thrown at 12 m/s: at least %d rows of 270\n",
+              c.smallest_body_rows);
+  EXPECT_EQ(c.camera["follow"], "box");
 }
 
 // The drop scene with `camera` (a [camera] table) appended, rendered to one small still: the

@@ -289,8 +289,8 @@ def red_pixels(png_data):
 def check_browser(tumble, work):
     binary = find_chromium()
     if binary is None:
-        print("SKIP: chromium is not installed (Debian package chromium; scripts/setup installs "
-              "it), so the report cannot be opened in a browser here")
+        print("SKIP: chromium is not installed (Debian package chromium; scripts/setup --tests "
+              "installs it), so the report cannot be opened in a browser here")
         return 77
     passing, failing = make_fixture(work)
     started = time.monotonic()

@@ -10,6 +10,7 @@
 #include <algorithm>
 
 #include "run_tumble.hpp"
+#include "trajectory_csv.hpp"
 
 namespace tumble_e2e {
 namespace {
@@ -18,7 +19,7 @@ bool contains(const std::string& text, std::string_view part) {
   return text.find(part) != std::string::npos;
 }
 
-// A solid-colour 8x6 RGB PNG, drawn by the ffmpeg tool (scripts/setup installs it).
+// A solid-colour 8x6 RGB PNG, drawn by the ffmpeg tool (scripts/setup --tests installs it).
 void solid_png(const fs::path& file, const std::string& colour) {
   fs::create_directories(file.parent_path());
   const RunResult r =
@@ -228,6 +229,35 @@ TEST(DiffReport, ReadmeCiRecipeRunsAsWritten) {
   EXPECT_TRUE(contains(r.out, "tumble diff: all 2 files within tolerance")) << r.out;
   EXPECT_TRUE(fs::exists(dir / "diff-report/index.html"));
   EXPECT_TRUE(contains(read_file(dir / "diff.xml"), "tests=\"2\" failures=\"0\""));
+
+  // The GitLab CI job below them: its script lines, as a runner runs them, against the goldens
+  // approved above.
+  at = readme.find("```yaml\n", at);
+  ASSERT_NE(at, std::string::npos) << "README: no GitLab CI job";
+  const std::string yaml = readme.substr(at, readme.find("```\n", at + 8) - at);
+  std::string job;
+  bool in_script = false;
+  for (const std::string& line : split(yaml, '\n')) {
+    if (line.find_first_not_of(' ') == std::string::npos) continue;
+    const std::size_t indent = line.find_first_not_of(' ');
+    if (line.substr(indent) == "script:") {
+      in_script = true;
+    } else if (in_script && line.compare(indent, 2, "- ") == 0) {
+      job += line.substr(indent + 2) + "\n";
+    } else {
+      in_script = false;
+    }
+  }
+  ASSERT_TRUE(contains(job, "tumble diff golden actual")) << yaml;
+  fs::remove_all(dir / "diff-report");
+  fs::remove(dir / "diff.xml");
+  const RunResult ci =
+      run_program("bash", {"-euo", "pipefail", "-c", "export PATH=\"$1\"; " + job, "job", path},
+                  dir.path(), options);
+  EXPECT_EQ(ci.exit_code, 0) << job << describe(ci);
+  EXPECT_TRUE(fs::exists(dir / "diff-report/index.html")) << "the job's artifact";
+  EXPECT_TRUE(contains(read_file(dir / "diff.xml"), "tests=\"2\" failures=\"0\""))
+      << "the job's JUnit report";
 }
 
 }  // namespace

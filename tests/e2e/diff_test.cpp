@@ -286,7 +286,7 @@ TEST(DiffImage, DiffOutIsMagentaWhereChangedAndGreyElsewhere) {
   EXPECT_TRUE(contains(r.out, "diff image out/diff.png")) << r.out;
   ASSERT_TRUE(fs::exists(dir / "out/diff.png"));
   EXPECT_EQ(png_size(dir / "out/diff.png"), (std::array<int, 2>{kWidth, kHeight}));
-  if (!have_ffmpeg()) FAIL() << "the ffmpeg tool (installed by scripts/setup) is missing";
+  if (!have_ffmpeg()) FAIL() << "the ffmpeg tool (installed by scripts/setup --tests) is missing";
   const std::string rgb = decoded_rgb(dir / "out/diff.png");
   ASSERT_EQ(rgb.size(), std::size_t{kWidth} * kHeight * 3);
   for (int y = 0; y < kHeight; ++y)

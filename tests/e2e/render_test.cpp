@@ -603,8 +603,13 @@ TEST(Render, MissingEglDeviceIsExit3AndNamesTheCount) {
   EXPECT_EQ(r.exit_code, 3) << describe(r);
   EXPECT_TRUE(r.err.starts_with("tumble: error: ")) << r.err;
   EXPECT_NE(r.err.find("99"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("only " + count + " EGL device"), std::string::npos)
-      << "the device count (" << count << ") is not named: " << r.err;
+  // In agreement with the number: "there is only 1 EGL device", "there are only 2 EGL devices".
+  const std::string expected = count == "0"   ? "there is no EGL device"
+                               : count == "1" ? "there is only 1 EGL device"
+                                              : "there are only " + count + " EGL devices";
+  EXPECT_NE(r.err.find(": " + expected + " (see 'tumble info')"), std::string::npos)
+      << "the device count (" << count << ") is not named right: " << r.err;
+  EXPECT_EQ(r.err.find("only 1 EGL devices"), std::string::npos) << r.err;
   EXPECT_TRUE(find_files_named(dir.path(), "clip.mp4").empty());
   EXPECT_TRUE(find_files_named(dir.path(), "").empty());
 }
@@ -619,6 +624,30 @@ TEST(Render, ExistingEglDeviceByNumber) {
   EXPECT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_TRUE(fs::is_regular_file(dir / "o/clip.mp4"));
   EXPECT_EQ(read_json(dir / "o/run.json")["counts"]["samples"], 6);
+}
+
+// The summary line says what was drawn: frames, stills and a strobe, never "0 frames".
+TEST(Render, TheSummarySaysWhatWasWritten) {
+  const TestDir dir;
+  RunResult r = run_tumble(
+      args({"render", "--no-mp4", "--strobe", "6", "--duration", "0.5", "--out", "s"}, kSmall),
+      dir.path());
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.out.starts_with("tumble: rendered strobe.png (6 poses) at 160x120 on ")) << r.out;
+  EXPECT_EQ(r.out.find("0 frames"), std::string::npos) << r.out;
+  r = run_tumble(args({"render", "--no-mp4", "--still", "0", "--still", "0.2", "--strobe", "3",
+                       "--duration", "0.5", "--out", "t"},
+                      kSmall),
+                 dir.path());
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(
+      r.out.starts_with("tumble: rendered 2 stills and strobe.png (3 poses) at 160x120 on "))
+      << r.out;
+  r = run_tumble(args({"render", "--still", "0.1", "--duration", "0.25", "--out", "u"}, kSmall),
+                 dir.path());
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.out.starts_with("tumble: rendered 15 frames (160x120, 60 fps) and 1 still on "))
+      << r.out;
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -55,7 +55,8 @@ bool have_ffmpeg_tools() {
 }
 
 #define REQUIRE_FFMPEG_TOOLS() \
-  if (!have_ffmpeg_tools()) FAIL() << "ffprobe/ffmpeg (installed by scripts/setup) are missing"
+  if (!have_ffmpeg_tools())    \
+  FAIL() << "ffprobe/ffmpeg (installed by scripts/setup --tests) are missing"
 
 // Frame k of a moving scene: a diagonal gradient that slides by 3 pixels per frame and an orange
 // box that crosses the picture, so consecutive frames differ and motion search has work to do.

@@ -156,7 +156,7 @@ TEST(Png, CorruptImageDataIsBadInputNotACrash) {
 // Files of other layouts, made by the ffmpeg tool from its test pattern, must read as the ffmpeg
 // tool decodes them (to rgb24, or rgba where the file has alpha).
 TEST(Png, ReadsPaletteGray16BitAndAlphaLikeFfmpegDoes) {
-  if (!have_ffmpeg()) FAIL() << "the ffmpeg tool (installed by scripts/setup) is missing";
+  if (!have_ffmpeg()) FAIL() << "the ffmpeg tool (installed by scripts/setup --tests) is missing";
   const fs::path dir = fresh_dir("layouts");
   struct Case {
     const char* pix_fmt;

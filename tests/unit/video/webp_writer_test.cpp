@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <optional>
@@ -43,7 +45,7 @@ Image frame(int w, int h, int k, bool alpha = false) {
 
 std::string write_webp(const fs::path& file, int w, int h, int fps, int frames,
                        bool alpha = false) {
-  WebpWriter webp(file, {w, h, fps, alpha});
+  WebpWriter webp(file, {w, h, fps, frames, alpha});
   for (int k = 0; k < frames; ++k) {
     const Image f = frame(w, h, k, alpha);
     webp.add_frame(f.pixels.data(), static_cast<std::ptrdiff_t>(f.stride()), false);
@@ -101,7 +103,7 @@ TEST(WebpWriter, WholeMillisecondRatesAreExact) {
 
 TEST(WebpWriter, ReportsTheDurationsItUsed) {
   const fs::path file = fresh_dir("report") / "clip.webp";
-  WebpWriter webp(file, {32, 32, 60, false});
+  WebpWriter webp(file, {32, 32, 60, 6, false});
   for (int k = 0; k < 6; ++k) {
     const Image f = frame(32, 32, k);
     webp.add_frame(f.pixels.data(), static_cast<std::ptrdiff_t>(f.stride()), false);
@@ -109,6 +111,54 @@ TEST(WebpWriter, ReportsTheDurationsItUsed) {
   webp.finish();
   EXPECT_EQ(webp.frames(), 6);
   EXPECT_EQ(webp.durations_ms(), (std::vector<int>{16, 17}));
+}
+
+// Browsers play a frame of 10 ms or less as 100 ms: at 120 fps every 3rd frame is kept (25 ms
+// each, 40 frames/s), and the loop still lasts the clip's duration.
+TEST(WebpWriter, FastClipsKeepFewerFramesOfAtLeast20Ms) {
+  const fs::path file = fresh_dir("fast") / "clip.webp";
+  const Chunks c = chunks(write_webp(file, 64, 48, 120, 24));
+  EXPECT_EQ(c.durations, std::vector<int>(8, 25));
+}
+
+TEST(WebpWriter, AShortLastFrameIsLeftOutAndTheOneBeforeLastsToTheEnd) {
+  // 25 frames at 120 fps: kept 0, 3, ..., 21 (8 frames); clip frame 24 would last 8 ms, so
+  // frame 21 lasts from 175 ms to round(1000·25/120) = 208 ms.
+  const fs::path file = fresh_dir("short_last") / "clip.webp";
+  const Chunks c = chunks(write_webp(file, 64, 48, 120, 25));
+  std::vector<int> expected(7, 25);
+  expected.push_back(33);
+  EXPECT_EQ(c.durations, expected);
+}
+
+TEST(WebpTiming, EveryFramePlaysAsWrittenAndTheLoopKeepsTheClipsClock) {
+  for (const int fps : {1, 24, 30, 50, 60, 90, 91, 99, 100, 120, 144, 240, 1000}) {
+    for (const long n : {1L, 2L, 7L, 100L, 241L, 1001L}) {
+      SCOPED_TRACE(testing::Message() << fps << " fps, " << n << " frames");
+      const WebpTiming t = WebpTiming::for_clip(fps, n);
+      // The thinning only where a frame would otherwise last 10 ms or less.
+      EXPECT_EQ(t.frame_step == 1, fps <= 90);
+      long kept = 0, total_ms = 0;
+      for (long k = 0; k < n; ++k) kept += t.keeps(k);
+      EXPECT_EQ(kept, t.frames());
+      for (long j = 0; j < t.frames(); ++j) {
+        const int d = t.duration_ms(j);
+        // (Unless the whole clip is shorter: 1 frame at 1000 fps lasts 1 ms.)
+        const long shortest =
+            std::min<long>(t.frame_step == 1 ? 11 : WebpTiming::kThinnedMinMs, t.end_ms());
+        EXPECT_GE(d, shortest) << "frame " << j;
+        total_ms += d;
+      }
+      // The loop lasts the clip, N / fps, to the millisecond.
+      EXPECT_EQ(total_ms, t.end_ms());
+      EXPECT_LE(std::abs(double(total_ms) - 1000.0 * double(n) / fps), 0.5);
+      EXPECT_DOUBLE_EQ(t.rate_hz(), double(fps) / t.frame_step);
+    }
+  }
+  EXPECT_EQ(WebpTiming::for_clip(120, 480).frame_step, 3);  // 40 frames/s, 25 ms each
+  EXPECT_TRUE(WebpTiming::for_clip(120, 480).exact());
+  EXPECT_EQ(WebpTiming::for_clip(100, 400).frame_step, 2);  // 50 frames/s, 20 ms each
+  EXPECT_FALSE(WebpTiming::for_clip(60, 240).exact());      // 17, 17, 16 ms
 }
 
 TEST(WebpWriter, OddSizesAndAlpha) {
@@ -129,7 +179,7 @@ TEST(WebpWriter, SameFramesSameBytes) {
 TEST(WebpWriter, UnfinishedLeavesNothing) {
   const fs::path dir = fresh_dir("unfinished");
   {
-    WebpWriter webp(dir / "clip.webp", {32, 32, 30, false});
+    WebpWriter webp(dir / "clip.webp", {32, 32, 30, 1, false});
     const Image f = frame(32, 32, 0);
     webp.add_frame(f.pixels.data(), static_cast<std::ptrdiff_t>(f.stride()), false);
   }
@@ -138,7 +188,7 @@ TEST(WebpWriter, UnfinishedLeavesNothing) {
 
 TEST(WebpWriter, SizeBeyondWhatWebpHoldsIsBadInput) {
   try {
-    WebpWriter webp(fresh_dir("size") / "clip.webp", {16384, 16, 30, false});
+    WebpWriter webp(fresh_dir("size") / "clip.webp", {16384, 16, 30, 1, false});
     FAIL() << "a 16384-pixel-wide WebP was accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::BadInput);
