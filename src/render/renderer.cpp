@@ -54,6 +54,8 @@ struct Renderer::Impl {
   GLuint mesh_program = 0, floor_program = 0, fxaa_program = 0;
   Mesh cube, sphere, ball, floor;
   GLuint empty_vao = 0;                           // the full-screen triangle needs no buffers
+  // Models' textures are bound here; unit 0 is FXAA's.
+  static constexpr GLint kModelTextureUnit = 1;
   GLuint ms_fbo = 0, ms_color = 0, ms_depth = 0;  // multisampled target (msaa)
   GLuint tex_color = 0;  // where fxaa reads the scene from: its edge rectangles, copied
   GLuint fbo = 0, color = 0, depth = 0;  // single-sample target read back
@@ -147,6 +149,8 @@ struct Renderer::Impl {
     }
     make_target(fbo, color, depth, 0);
     mesh_program = link_program("mesh.vert", "mesh.frag");
+    glUseProgram(mesh_program);
+    glUniform1i(glGetUniformLocation(mesh_program, "u_texture"), kModelTextureUnit);
     floor_program = link_program("floor.vert", "floor.frag");
     cube = make_cube();
     sphere = make_sphere();
@@ -160,7 +164,12 @@ struct Renderer::Impl {
       if (scene.bodies[i].shape != Shape::Mesh) continue;
       const MeshBody* model = models ? models->model(i) : nullptr;
       if (!model) gl_fail("mesh body \"" + scene.bodies[i].name + "\" has no loaded model");
-      model_meshes[i] = make_model(model->mesh);
+      // The model's own materials, unless the scene gives the body a colour.
+      const BodySpec& spec = scene.bodies[i];
+      const Vec3 body = color_of(spec.color);
+      model_meshes[i] = make_model(
+          model->mesh, spec.color_given ? nullptr : &model->appearance,
+          Vec3(srgb_to_linear(body.x()), srgb_to_linear(body.y()), srgb_to_linear(body.z())));
       Vec3 lo = model->mesh.vertices.front(), hi = lo;
       for (const Vec3& p : model->mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
       model_lo[i] = lo;
@@ -400,6 +409,7 @@ struct Renderer::Impl {
     set(mesh_program, "u_eye", eye(*exposures.back().world));
     set(mesh_program, "u_shadow", 0.0);
     set(mesh_program, "u_opacity", 1.0);
+    glUniform1i(glGetUniformLocation(mesh_program, "u_material"), 0);
     // Opaque bodies first, writing depth; then the translucent ones over them.
     for (const Exposure& e : exposures)
       if (e.opacity >= 1.0)
@@ -420,6 +430,23 @@ struct Renderer::Impl {
                      reinterpret_cast<const void*>(sizeof(unsigned) * std::size_t(ball.marked)));
       set(mesh_program, "u_color", Vec3(0.5 * (color_of(scene.bodies[i].color) + Vec3::Ones())));
       glDrawElements(GL_TRIANGLES, ball.marked, GL_UNSIGNED_INT, nullptr);
+      return;
+    }
+    const Mesh& mesh = model_meshes[i];
+    if (scene.bodies[i].shape == Shape::Mesh && !mesh.parts.empty()) {
+      // In its own materials: a run of indices per material, each with its texture or none.
+      glUniform1i(glGetUniformLocation(mesh_program, "u_material"), 1);
+      glBindVertexArray(mesh.vao);
+      glActiveTexture(GL_TEXTURE0 + kModelTextureUnit);
+      for (const MeshPart& part : mesh.parts) {
+        glBindTexture(GL_TEXTURE_2D, part.texture);
+        glUniform1i(glGetUniformLocation(mesh_program, "u_textured"), part.texture != 0 ? 1 : 0);
+        glDrawElements(GL_TRIANGLES, part.count, GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(sizeof(unsigned) * std::size_t(part.first)));
+      }
+      glBindTexture(GL_TEXTURE_2D, 0);
+      glActiveTexture(GL_TEXTURE0);
+      glUniform1i(glGetUniformLocation(mesh_program, "u_material"), 0);
       return;
     }
     draw_mesh(i);
