@@ -15,14 +15,15 @@ namespace fs = std::filesystem;
 ConfinedIOSystem::ConfinedIOSystem(const fs::path& model_file, std::uintmax_t max_file_bytes)
     : max_file_bytes_(max_file_bytes) {
   std::error_code ec;
-  model_ = fs::weakly_canonical(model_file, ec);
+  // Absolute first: weakly_canonical leaves a relative path relative when none of it exists.
+  model_ = fs::weakly_canonical(fs::absolute(model_file, ec), ec);
   folder_ = model_.parent_path();
 }
 
 std::string ConfinedIOSystem::check(const char* file) const {
   if (file == nullptr) return "no file name";
   std::error_code ec;
-  const fs::path path = fs::weakly_canonical(fs::path(file), ec);
+  const fs::path path = fs::weakly_canonical(fs::absolute(fs::path(file), ec), ec);
   if (ec) return "cannot resolve \"" + std::string(file) + "\"";
   if (path != model_) {
     // Inside the model's folder: the relative path from the folder must not climb out of it.

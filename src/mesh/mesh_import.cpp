@@ -154,7 +154,6 @@ class MaterialTable {
   /// index kBodyColor replaced by its real index.
   void finish(MeshAppearance& appearance) {
     MeshMaterial body;
-    body.name = "";
     body.use_body_color = true;
     const auto body_index = static_cast<std::uint32_t>(materials_.size());
     materials_.push_back(body);

@@ -126,6 +126,9 @@ TEST(MeshMaterials, AMissingTextureIsExitTwoNamingIt) {
     EXPECT_NE(r.err.find("no_such_texture.png"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("missing_texture.obj"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("body \"m\""), std::string::npos) << r.err;
+    // Missing, not "outside the model's folder": a model named relative to the working folder
+    // confines its textures to that folder.
+    EXPECT_NE(r.err.find("no_such_texture.png\": no such file"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "o/still_0.png"));
   }
   const RunResult s =
