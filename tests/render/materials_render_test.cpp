@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "tumble/egl_context.hpp"
 #include "tumble/renderer.hpp"
@@ -167,10 +168,13 @@ TEST(MaterialsRender, ASceneColourOverridesTheModelsMaterials) {
 }
 
 // A textured model thrown over a floor, with shadows: every frame of the partial redraw is the
-// very bytes of drawing it all, for each antialiasing mode.
+// very bytes of drawing it all, for each antialiasing mode, and over a transparent backdrop.
 TEST(MaterialsRender, PartialRedrawOfATexturedModelIsTheFullPicture) {
-  for (const char* antialias : {"fxaa", "msaa", "none"}) {
+  for (const char* antialias : {"fxaa", "msaa", "none", "transparent"}) {
     SCOPED_TRACE(antialias);
+    const bool transparent = std::string(antialias) == "transparent";
+    if (transparent) antialias = "fxaa";
+    const Backdrop backdrop = transparent ? Backdrop::Transparent : Backdrop::Sky;
     const Scene s = parse_scene(std::string(R"(
 [render]
 width = 160
@@ -194,8 +198,8 @@ angular_velocity = [1.0, 2.0, 3.0]
                                 "<materials test>");
     EglContext gl;
     const SceneModels models = load_models(s);
-    Renderer partial(s, Renderer::Readback::Auto, &models);
-    Renderer full(s, Renderer::Readback::Auto, &models);
+    Renderer partial(s, Renderer::Readback::Auto, &models, backdrop);
+    Renderer full(s, Renderer::Readback::Auto, &models, backdrop);
     full.redraw_in_full(true);
     World w(make_world_def(s, models));
     double drawn = 0.0;
@@ -206,6 +210,10 @@ angular_velocity = [1.0, 2.0, 3.0]
       if (k > 0) drawn += partial.redrawn_share();
       const Image a = partial.read_image(), b = full.read_image();
       ASSERT_EQ(a.pixels, b.pixels) << "frame " << k;
+      // Transparent: RGBA (straight alpha), as every PNG output then is.
+      if (transparent) {
+        EXPECT_EQ(a.channels, 4);
+      }
     }
     EXPECT_LT(drawn / 7.0, 0.8);  // it did redraw only part of the frame
   }
