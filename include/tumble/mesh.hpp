@@ -30,6 +30,9 @@ struct MeshLoadOptions {
   MeshRepair repair = MeshRepair::None;
   std::uintmax_t max_file_bytes = 256u << 20;  ///< the model file and each file it references
   std::size_t max_triangles = 2'000'000;       ///< after triangulation, over all meshes and nodes
+  /// Decoded pixels of each texture (width × height): a small PNG or JPEG may unpack into
+  /// gigabytes. 64 Mpx: an 8192 × 8192 texture.
+  std::uint64_t max_texture_pixels = 8192ull * 8192ull;
 };
 
 /// Welded, consistently wound triangles: counter-clockwise seen from outside (the right-hand
@@ -64,6 +67,40 @@ struct PrincipalFrame {
 };
 PrincipalFrame principal_frame(const Mat3& inertia);
 
+/// A texture as decoded from its PNG or JPEG: RGBA8, rows top-down as in the file (the top row
+/// is v = 1 in assimp's texture coordinates, whose origin is the bottom left).
+struct TextureImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  ///< 4 bytes per pixel, sRGB-encoded colour, straight alpha
+  std::string source;              ///< the file (or "FILE, embedded texture N") it came from
+};
+
+/// One material of a model: its base colour and, optionally, a texture multiplied into it.
+struct MeshMaterial {
+  std::string name;                      ///< the file's name for it ("" when unnamed)
+  Vec3 base_color_linear = Vec3::Ones();  ///< linear RGB (glTF baseColorFactor, MTL Kd)
+  int texture = -1;                      ///< index into MeshAppearance::textures, -1: none
+  /// Not the file's: the parts of a model that name no material of their own are drawn in the
+  /// body's colour (times their vertex colours).
+  bool use_body_color = false;
+};
+
+/// How a model's file says it looks, per drawn triangle (aligned with MeshBody::mesh.triangles).
+/// Empty (`has_materials()` false) for a model whose file carries no material of its own and no
+/// vertex colours: it is drawn in the body's colour. docs/meshes.md says which file fields count.
+struct MeshAppearance {
+  std::vector<MeshMaterial> materials;
+  std::vector<TextureImage> textures;
+  /// Per triangle: index into `materials`.
+  std::vector<std::uint32_t> triangle_material;
+  /// Per triangle corner: linear RGB multiplied into the material's colour (per-vertex colours;
+  /// ones where the file has none).
+  std::vector<std::array<Vec3, 3>> corner_color;
+  /// Per triangle corner: texture coordinates (u, v), origin bottom left; zeros without UVs.
+  std::vector<std::array<Eigen::Vector2d, 3>> corner_uv;
+  bool has_materials() const { return !triangle_material.empty(); }
+};
+
 /// A loaded model, checked and ready to become a body.
 struct MeshBody {
   TriangleMesh mesh;    ///< what is rendered (after any repair)
@@ -74,13 +111,18 @@ struct MeshBody {
   std::size_t source_triangles = 0;      ///< triangles in the file, after triangulation
   std::size_t welded_vertices = 0;       ///< distinct vertices after welding
   std::size_t degenerate_triangles = 0;  ///< zero-area triangles dropped (see docs/meshes.md)
+  /// Its materials, textures and vertex colours, per triangle of `mesh` (none after
+  /// repair = "hull", whose triangles are not the file's).
+  MeshAppearance appearance;
 };
 
 /// Loads and checks a closed model; throws tumble::Error (BadInput, the file as its location,
 /// so `describe()` reads "FILE: problem") for a missing, unreadable, unparseable or too large
 /// file, a format outside the allow-list, and a model that is not a valid solid (not closed,
 /// non-manifold, inconsistently wound, inside-out, without volume, self-intersecting), each
-/// with counts and an example location in file units.
+/// with counts and an example location in file units. A texture that a material names and that
+/// is missing, unreadable, outside the model's folder, too large or not a PNG or JPEG is an
+/// error too, naming the texture file.
 MeshBody load_mesh_body(const std::filesystem::path& file, const MeshLoadOptions& options);
 
 /// The file extensions `load_mesh_body` accepts, lower case, without the dot.

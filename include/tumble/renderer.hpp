@@ -1,6 +1,8 @@
 #pragma once
 /// Draws a World into an off-screen framebuffer and reads the pixels back. Needs a current
-/// OpenGL 3.3 core context (EglContext). The look: scene colours, a 1 m checker floor that fades
+/// OpenGL 3.3 core context (EglContext). The look: scene colours (a mesh body in its model's own
+/// materials and textures where its file has them and the scene gives it no colour), a checker
+/// floor (checker_tile_m) that fades
 /// into the background, Blinn-Phong lighting from [light], planar shadows of the bodies on the
 /// floor (exact for a plane and one extra cheap pass, instead of a shadow map), FXAA or MSAA,
 /// sRGB output. The camera is the scene's (perspective or orthographic, camera.hpp).
@@ -29,6 +31,20 @@
 #include "tumble/world_builder.hpp"
 
 namespace tumble {
+
+/// The side of the floor's checker squares, m: the power of ten nearest (in log scale) the size of
+/// the largest moving body (its largest extent: a box's longest edge, a sphere's diameter, a
+/// mesh's longest bounding-box side), so a 1 cm box stands on 1 cm squares and a 100 m one on
+/// 100 m squares. Fixed bodies (a large ramp) and particles (whose drawn size is only a marker)
+/// do not set it; without any other body it is 1 m.
+double checker_tile_m(const Scene& scene, const SceneModels* models = nullptr);
+
+/// The squares the renderer draws: checker_tile_m, times ten as often as needed (at most three
+/// times) for a square on the floor below the camera's target to span at least 4 pixels along
+/// both floor axes in the scene's picture, since smaller squares cannot be drawn without moiré
+/// (an orthographic camera 8° above the floor, as in a side view, compresses depth sevenfold).
+/// The floor's fade distances scale with it.
+double floor_tile_m(const Scene& scene, const SceneModels* models = nullptr);
 
 /// One exposure of a picture: the bodies as they are in `world`, drawn with `opacity` in (0, 1]
 /// (1: opaque, as in a frame of the clip; less: translucent, as the earlier poses of a strobe).

@@ -116,6 +116,7 @@ struct BodySpec {
   std::optional<double> friction;        ///< Coulomb mu; default: the floor's (0 without one)
   bool fixed = false;                    ///< does not move (ramps, tables, walls, pegs)
   Color color;
+  bool color_given = false;  ///< `color` is in the file: it overrides a model's own materials
   SourceLocation where;  ///< the [[body]] header, for errors found after parsing
 };
 

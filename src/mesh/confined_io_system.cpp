@@ -1,6 +1,10 @@
 #include "confined_io_system.hpp"
 
+#include <assimp/IOStream.hpp>
+
 #include <algorithm>
+#include <cctype>
+#include <memory>
 #include <string_view>
 #include <system_error>
 
@@ -11,14 +15,15 @@ namespace fs = std::filesystem;
 ConfinedIOSystem::ConfinedIOSystem(const fs::path& model_file, std::uintmax_t max_file_bytes)
     : max_file_bytes_(max_file_bytes) {
   std::error_code ec;
-  model_ = fs::weakly_canonical(model_file, ec);
+  // Absolute first: weakly_canonical leaves a relative path relative when none of it exists.
+  model_ = fs::weakly_canonical(fs::absolute(model_file, ec), ec);
   folder_ = model_.parent_path();
 }
 
 std::string ConfinedIOSystem::check(const char* file) const {
   if (file == nullptr) return "no file name";
   std::error_code ec;
-  const fs::path path = fs::weakly_canonical(fs::path(file), ec);
+  const fs::path path = fs::weakly_canonical(fs::absolute(fs::path(file), ec), ec);
   if (ec) return "cannot resolve \"" + std::string(file) + "\"";
   if (path != model_) {
     // Inside the model's folder: the relative path from the folder must not climb out of it.
@@ -48,7 +53,50 @@ Assimp::IOStream* ConfinedIOSystem::Open(const char* file, const char* mode) {
     refusal_ = std::move(why);
     return nullptr;
   }
-  return DefaultIOSystem::Open(file, mode);
+  Assimp::IOStream* stream = DefaultIOSystem::Open(file, mode);
+  if (stream != nullptr) opened_.emplace_back(file);
+  return stream;
+}
+
+bool ConfinedIOSystem::opened_with_extension(const std::string& extension) const {
+  return std::any_of(opened_.begin(), opened_.end(), [&](const std::string& name) {
+    if (name.size() < extension.size()) return false;
+    for (std::size_t i = 0; i < extension.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(name[name.size() - extension.size() + i])) !=
+          extension[i])
+        return false;
+    return true;
+  });
+}
+
+bool ConfinedIOSystem::read_whole(const fs::path& file, std::vector<std::uint8_t>& bytes,
+                                  std::string& why) {
+  const std::string name = file.string();
+  if (std::string refused = check(name.c_str()); !refused.empty()) {
+    why = std::move(refused);
+    return false;
+  }
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (!fs::exists(status)) {
+    why = "no such file";
+    return false;
+  }
+  if (!fs::is_regular_file(status)) {
+    why = "not a regular file";
+    return false;
+  }
+  std::unique_ptr<Assimp::IOStream> stream(DefaultIOSystem::Open(name.c_str(), "rb"));
+  if (!stream) {
+    why = "cannot open it for reading";
+    return false;
+  }
+  bytes.resize(stream->FileSize());
+  if (!bytes.empty() && stream->Read(bytes.data(), 1, bytes.size()) != bytes.size()) {
+    why = "cannot read it";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace tumble::mesh_detail

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace tumble::mesh_detail {
 
@@ -22,6 +23,15 @@ class ConfinedIOSystem : public Assimp::DefaultIOSystem {
   /// missing referenced file does not say that tumble refused it.
   const std::string& refusal() const { return refusal_; }
 
+  /// Whether a file whose name ends in `extension` (".mtl") was opened: an OBJ's material
+  /// library was read.
+  bool opened_with_extension(const std::string& extension) const;
+
+  /// The bytes of `file` (a texture), read under the same rules as the model's own files.
+  /// Returns false with `why` set when it may not be read or cannot be.
+  bool read_whole(const std::filesystem::path& file, std::vector<std::uint8_t>& bytes,
+                  std::string& why);
+
  private:
   /// "" when `file` may be read, else the reason it may not.
   std::string check(const char* file) const;
@@ -30,6 +40,7 @@ class ConfinedIOSystem : public Assimp::DefaultIOSystem {
   std::filesystem::path folder_;  // canonical folder of the model
   std::uintmax_t max_file_bytes_;
   std::string refusal_;
+  std::vector<std::string> opened_;  // every file handed to assimp, as it named them
 };
 
 }  // namespace tumble::mesh_detail

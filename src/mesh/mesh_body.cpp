@@ -29,23 +29,26 @@ struct Welded {
   std::vector<Vec3> vertices;
   std::vector<Triangle> triangles;  // collapsed ones removed; slivers kept
   std::vector<bool> sliver;         // per triangle: zero area (height below the weld tolerance)
+  std::vector<std::uint32_t> source;  // per triangle: its triangle in the soup
   std::size_t collapsed = 0;        // triangles removed because two corners welded together
   std::size_t used_vertices = 0;
   double tolerance = 0;
 };
 
-Welded weld_soup(const TriangleSoup& soup) {
-  const Weld weld = weld_vertices(soup.positions);
+Welded weld_soup(const TriangleSoup& soup, Weld& weld) {
+  weld = weld_vertices(soup.positions);
   Welded w;
   w.vertices = weld.vertices;
   w.tolerance = weld.tolerance;
   std::vector<bool> used(w.vertices.size(), false);
-  for (const auto& t : soup.triangles) {
+  for (std::size_t f = 0; f < soup.triangles.size(); ++f) {
+    const auto& t = soup.triangles[f];
     const Triangle m{weld.index_of[t[0]], weld.index_of[t[1]], weld.index_of[t[2]]};
     if (m[0] == m[1] || m[1] == m[2] || m[2] == m[0]) {
       ++w.collapsed;
       continue;
     }
+    w.source.push_back(static_cast<std::uint32_t>(f));
     const Vec3 &a = w.vertices[m[0]], &b = w.vertices[m[1]], &c = w.vertices[m[2]];
     const double twice_area = (b - a).cross(c - a).norm();
     const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
@@ -59,10 +62,11 @@ Welded weld_soup(const TriangleSoup& soup) {
   return w;
 }
 
-// The triangles kept by `keep` with only the vertices they use, in first-use order.
+// The triangles kept by `keep` with only the vertices they use, in first-use order; `kept`, when
+// given, receives the index of each kept triangle.
 template <typename Keep>
 TriangleMesh compact_mesh(const std::vector<Vec3>& vertices, const std::vector<Triangle>& triangles,
-                          Keep keep) {
+                          Keep keep, std::vector<std::uint32_t>* kept = nullptr) {
   TriangleMesh mesh;
   std::vector<std::uint32_t> index(vertices.size(), UINT32_MAX);
   for (std::size_t f = 0; f < triangles.size(); ++f) {
@@ -77,8 +81,38 @@ TriangleMesh compact_mesh(const std::vector<Vec3>& vertices, const std::vector<T
       t[k] = index[v];
     }
     mesh.triangles.push_back(t);
+    if (kept != nullptr) kept->push_back(static_cast<std::uint32_t>(f));
   }
   return mesh;
+}
+
+// The soup's appearance carried over to the drawn triangles: `kept` names each drawn triangle's
+// welded triangle, whose corners may have been re-wound (1 and 2 swapped), so each corner takes
+// the attributes of the soup corner that welded to the same vertex.
+MeshAppearance carry_appearance(const TriangleSoup& soup, const Weld& weld, const Welded& w,
+                                const std::vector<Triangle>& wound,
+                                const std::vector<std::uint32_t>& kept) {
+  MeshAppearance out;
+  const MeshAppearance& in = soup.appearance;
+  if (!in.has_materials()) return out;
+  out.materials = in.materials;
+  out.textures = in.textures;
+  for (const std::uint32_t f : kept) {
+    const std::uint32_t s = w.source[f];
+    const auto& corners = soup.triangles[s];
+    std::array<Vec3, 3> color;
+    std::array<Eigen::Vector2d, 3> uv;
+    for (std::size_t k = 0; k < 3; ++k) {
+      std::size_t j = 0;
+      while (j < 2 && weld.index_of[corners[j]] != wound[f][k]) ++j;
+      color[k] = in.corner_color[s][j];
+      uv[k] = in.corner_uv[s][j];
+    }
+    out.triangle_material.push_back(in.triangle_material[s]);
+    out.corner_color.push_back(color);
+    out.corner_uv.push_back(uv);
+  }
+  return out;
 }
 
 class Reporter {
@@ -185,7 +219,8 @@ MeshBody load_mesh_body(const fs::path& file, const MeshLoadOptions& options) {
     if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
       throw_mesh_error(file, "a vertex lies beyond 1e30 m of the origin (after scale)");
 
-  const Welded w = weld_soup(soup);
+  Weld weld;
+  const Welded w = weld_soup(soup, weld);
   const Reporter report(file, options.scale, w.vertices);
   const std::size_t source_triangles = soup.triangles.size();
   const auto slivers = static_cast<std::size_t>(std::count(w.sliver.begin(), w.sliver.end(), true));
@@ -298,8 +333,10 @@ MeshBody load_mesh_body(const fs::path& file, const MeshLoadOptions& options) {
   // Mass properties of the closed surface (slivers included: they close T-junctions and weigh
   // nothing), its hull, and the checks between them.
   body.mass = mass_properties(closed);
-  body.mesh = compact_mesh(fixed.vertices, fixed.triangles,
-                           [&](std::size_t f) { return !fixed.sliver[f]; });
+  std::vector<std::uint32_t> drawn;
+  body.mesh = compact_mesh(
+      fixed.vertices, fixed.triangles, [&](std::size_t f) { return !fixed.sliver[f]; }, &drawn);
+  body.appearance = carry_appearance(soup, weld, w, fixed.triangles, drawn);
   const ConvexHull hull = hull_of(report, body.mesh.vertices, "");
   const MassProperties hull_mass = mass_properties(hull.mesh);
   check_solid(file, surface, body.mass, hull_mass.volume, "the mesh");

@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
+#include <cmath>
+#include <map>
+#include <optional>
 #include <limits>
 #include <memory>
 #include <set>
@@ -17,6 +20,7 @@
 #include "confined_io_system.hpp"
 #include "format_guard.hpp"
 #include "mesh_error.hpp"
+#include "texture_decode.hpp"
 
 namespace tumble {
 
@@ -102,6 +106,185 @@ std::vector<MeshInstance> mesh_instances(const aiScene& scene) {
   return instances;
 }
 
+double srgb_to_linear(double c) {
+  c = std::clamp(c, 0.0, 1.0);
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+Vec3 to_linear(const aiColor4D& c, bool linear) {
+  const Vec3 v(static_cast<double>(c.r), static_cast<double>(c.g), static_cast<double>(c.b));
+  if (linear) return v.cwiseMax(0.0).cwiseMin(1.0);
+  return {srgb_to_linear(v.x()), srgb_to_linear(v.y()), srgb_to_linear(v.z())};
+}
+
+// A model's materials as tumble draws them: which of assimp's materials are the file's own
+// (assimp invents a default one for files that have none), their colours in linear RGB and
+// their textures, each decoded once.
+class MaterialTable {
+ public:
+  MaterialTable(const aiScene& scene, const fs::path& file, const std::string& ext,
+                ConfinedIOSystem& io, const MeshLoadOptions& options)
+      : scene_(scene), file_(file), io_(io), options_(options) {
+    // glTF defines its factors and vertex colours as linear; the other formats' colours are
+    // what their authors picked on screen (like the scene's `color`): sRGB.
+    linear_ = ext == "gltf" || ext == "glb";
+    for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
+      const aiMaterial* m = scene.mMaterials[i];
+      entries_.push_back(m != nullptr && own(*m, i, ext) ? read(*m) : Entry{});
+    }
+  }
+
+  bool linear_colors() const { return linear_; }
+  /// The material of aiMesh material index i: the body's colour where it is not the file's,
+  /// except under vertex colours, which are shown as they are (white, as glTF's default).
+  std::uint32_t material_of(unsigned i, bool vertex_colors) {
+    if (i < entries_.size() && entries_[i].own) return entries_[i].index;
+    if (!vertex_colors) return kBodyColor;
+    if (white_ == kBodyColor) {
+      white_ = static_cast<std::uint32_t>(materials_.size());
+      materials_.push_back(MeshMaterial{});
+    }
+    return white_;
+  }
+  unsigned uv_channel_of(unsigned i) const { return i < entries_.size() ? entries_[i].uv : 0; }
+  bool any_own() const {
+    return std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.own; });
+  }
+  /// Moves the materials and textures into `appearance`, with the body-colour material at
+  /// index kBodyColor replaced by its real index.
+  void finish(MeshAppearance& appearance) {
+    MeshMaterial body;
+    body.use_body_color = true;
+    const auto body_index = static_cast<std::uint32_t>(materials_.size());
+    materials_.push_back(body);
+    for (std::uint32_t& t : appearance.triangle_material)
+      if (t == kBodyColor) t = body_index;
+    appearance.materials = std::move(materials_);
+    appearance.textures = std::move(textures_);
+  }
+
+  static constexpr std::uint32_t kBodyColor = UINT32_MAX;
+
+ private:
+  struct Entry {
+    bool own = false;
+    std::uint32_t index = 0;  // into materials_
+    unsigned uv = 0;          // texture coordinate channel of its texture
+  };
+
+  bool own(const aiMaterial& m, unsigned index, const std::string& ext) const {
+    aiString name;
+    m.Get(AI_MATKEY_NAME, name);
+    const std::string n = name.C_Str();
+    if (ext == "gltf" || ext == "glb")  // assimp appends its default material last
+      return index + 1 < scene_.mNumMaterials;
+    if (ext == "stl" || ext == "ply" || ext == "off") return false;  // no materials in these
+    // An OBJ's materials come from its .mtl: without one, `usemtl` names only invent defaults.
+    if (ext == "obj" && !io_.opened_with_extension(".mtl")) return false;
+    return n != AI_DEFAULT_MATERIAL_NAME;
+  }
+
+  Entry read(const aiMaterial& m) {
+    MeshMaterial out;
+    aiString name;
+    m.Get(AI_MATKEY_NAME, name);
+    out.name = name.C_Str();
+    aiColor4D color(1.0f, 1.0f, 1.0f, 1.0f);
+    if (m.Get(AI_MATKEY_BASE_COLOR, color) != AI_SUCCESS) m.Get(AI_MATKEY_COLOR_DIFFUSE, color);
+    out.base_color_linear = to_linear(color, linear_);
+    Entry e;
+    for (const aiTextureType type : {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}) {
+      aiString path;
+      if (m.GetTextureCount(type) == 0 || m.GetTexture(type, 0, &path) != AI_SUCCESS) continue;
+      out.texture = texture(path.C_Str());
+      int channel = 0;
+      if (m.Get(AI_MATKEY_UVWSRC(type, 0), channel) == AI_SUCCESS && channel > 0 &&
+          channel < int(AI_MAX_NUMBER_OF_TEXTURECOORDS))
+        e.uv = unsigned(channel);
+      break;
+    }
+    e.own = true;
+    e.index = static_cast<std::uint32_t>(materials_.size());
+    materials_.push_back(out);
+    return e;
+  }
+
+  // The texture `reference` names, decoded (once per name): embedded ("*N", a glTF buffer view
+  // or data URI) or a file relative to the model's folder.
+  int texture(const std::string& reference) {
+    if (auto it = by_name_.find(reference); it != by_name_.end()) return it->second;
+    TextureImage image;
+    const auto [embedded, embedded_index] = scene_.GetEmbeddedTextureAndIndex(reference.c_str());
+    if (embedded != nullptr) {
+      image = decode_embedded(*embedded, embedded_index);
+    } else {
+      std::string relative = reference;
+      std::replace(relative.begin(), relative.end(), '\\', '/');  // written on Windows
+      const fs::path path = fs::path(relative).is_absolute()
+                                ? fs::path(relative)
+                                : file_.parent_path() / fs::path(relative);
+      std::vector<std::uint8_t> bytes;
+      std::string why;
+      if (!io_.read_whole(path, bytes, why)) fail_texture(path.string(), why);
+      if (bytes.size() > options_.max_file_bytes)
+        fail_texture(path.string(), "file too large: " + std::to_string(bytes.size()) +
+                                        " bytes, above the limit of " +
+                                        std::to_string(options_.max_file_bytes));
+      DecodedTexture decoded = decode_texture(bytes, options_.max_texture_pixels);
+      if (!decoded.why.empty()) fail_texture(path.string(), decoded.why);
+      image = std::move(decoded.image);
+      image.source = path.string();
+    }
+    const int index = static_cast<int>(textures_.size());
+    textures_.push_back(std::move(image));
+    by_name_.emplace(reference, index);
+    return index;
+  }
+
+  TextureImage decode_embedded(const aiTexture& t, int index) {
+    const std::string source = file_.string() + ", embedded texture " + std::to_string(index);
+    if (t.mHeight == 0) {  // compressed: mWidth bytes of a PNG, JPEG, ...
+      const auto* data = reinterpret_cast<const std::uint8_t*>(t.pcData);
+      DecodedTexture decoded = decode_texture(std::span<const std::uint8_t>(data, t.mWidth),
+                                              options_.max_texture_pixels);
+      if (!decoded.why.empty()) fail_texture(source, decoded.why);
+      decoded.image.source = source;
+      return std::move(decoded.image);
+    }
+    // Raw BGRA texels (formats that store uncompressed images).
+    if (std::uint64_t(t.mWidth) * t.mHeight > options_.max_texture_pixels)
+      fail_texture(source, "too large");
+    TextureImage image;
+    image.width = int(t.mWidth);
+    image.height = int(t.mHeight);
+    image.source = source;
+    image.rgba.resize(std::size_t(t.mWidth) * t.mHeight * 4);
+    for (std::size_t i = 0; i < std::size_t(t.mWidth) * t.mHeight; ++i) {
+      const aiTexel& p = t.pcData[i];
+      image.rgba[4 * i + 0] = p.r;
+      image.rgba[4 * i + 1] = p.g;
+      image.rgba[4 * i + 2] = p.b;
+      image.rgba[4 * i + 3] = p.a;
+    }
+    return image;
+  }
+
+  [[noreturn]] void fail_texture(const std::string& texture, const std::string& why) const {
+    throw_mesh_error(file_, "texture \"" + texture + "\": " + why);
+  }
+
+  const aiScene& scene_;
+  const fs::path& file_;
+  ConfinedIOSystem& io_;
+  const MeshLoadOptions& options_;
+  bool linear_ = false;
+  std::vector<Entry> entries_;
+  std::vector<MeshMaterial> materials_;
+  std::vector<TextureImage> textures_;
+  std::map<std::string, int> by_name_;
+  std::uint32_t white_ = kBodyColor;  // the material of vertex colours without a material
+};
+
 }  // namespace
 
 TriangleSoup import_triangle_soup(const fs::path& file, const MeshLoadOptions& options) {
@@ -179,11 +362,21 @@ TriangleSoup import_triangle_soup(const fs::path& file, const MeshLoadOptions& o
   if (vertex_count > std::numeric_limits<std::uint32_t>::max())
     throw_mesh_error(file, "too many vertices: " + std::to_string(vertex_count));
 
+  MaterialTable materials(*scene, file, ext, *io, options);
+  bool vertex_colors = false;
+  for (const MeshInstance& instance : instances) vertex_colors |= instance.mesh->HasVertexColors(0);
+  const bool appearance = vertex_colors || materials.any_own();
+
   TriangleSoup soup;
   soup.positions.reserve(static_cast<std::size_t>(vertex_count));
   soup.triangles.reserve(static_cast<std::size_t>(triangle_count));
+  MeshAppearance& look = soup.appearance;
   for (const MeshInstance& instance : instances) {
     const aiMesh& mesh = *instance.mesh;
+    const std::uint32_t material =
+        materials.material_of(mesh.mMaterialIndex, mesh.HasVertexColors(0));
+    const aiVector3D* uvs = mesh.mTextureCoords[materials.uv_channel_of(mesh.mMaterialIndex)];
+    const aiColor4D* colors = mesh.mColors[0];
     const Mat3 linear = instance.transform.topLeftCorner<3, 3>();
     const Vec3 offset = instance.transform.topRightCorner<3, 1>();
     // A mirroring transform turns an outward winding inward: reverse it back.
@@ -202,12 +395,26 @@ TriangleSoup import_triangle_soup(const fs::path& file, const MeshLoadOptions& o
       const unsigned a = face.mIndices[0], b = face.mIndices[1], c = face.mIndices[2];
       if (a >= mesh.mNumVertices || b >= mesh.mNumVertices || c >= mesh.mNumVertices)
         throw_mesh_error(file, "a face refers to a vertex that does not exist");
-      if (mirrored)
-        soup.triangles.push_back({base + a, base + c, base + b});
-      else
-        soup.triangles.push_back({base + a, base + b, base + c});
+      const std::array<unsigned, 3> corners =
+          mirrored ? std::array<unsigned, 3>{a, c, b} : std::array<unsigned, 3>{a, b, c};
+      soup.triangles.push_back({base + corners[0], base + corners[1], base + corners[2]});
+      if (!appearance) continue;
+      look.triangle_material.push_back(material);
+      std::array<Vec3, 3> color;
+      std::array<Eigen::Vector2d, 3> uv;
+      for (std::size_t k = 0; k < 3; ++k) {
+        color[k] = colors != nullptr ? to_linear(colors[corners[k]], materials.linear_colors())
+                                     : Vec3::Ones();
+        uv[k] = uvs != nullptr ? Eigen::Vector2d(static_cast<double>(uvs[corners[k]].x),
+                                                 static_cast<double>(uvs[corners[k]].y))
+                               : Eigen::Vector2d::Zero();
+        if (!uv[k].allFinite()) uv[k].setZero();
+      }
+      look.corner_color.push_back(color);
+      look.corner_uv.push_back(uv);
     }
   }
+  if (appearance) materials.finish(look);
   if (soup.triangles.empty())
     throw_mesh_error(file, "the file holds no triangles (points or lines only bound no volume)");
   for (const Vec3& p : soup.positions)

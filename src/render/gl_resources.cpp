@@ -1,5 +1,6 @@
 #include "gl_resources.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "shader_sources.hpp"
@@ -75,12 +76,73 @@ Mesh upload(const std::vector<float>& vertices, const std::vector<unsigned>& ind
   return m;
 }
 
+// Interleaved position, normal, linear albedo, texture coordinates (11 floats), indexed.
+Mesh upload_with_materials(const std::vector<float>& vertices,
+                           const std::vector<unsigned>& indices) {
+  Mesh m;
+  glGenVertexArrays(1, &m.vao);
+  glGenBuffers(1, &m.vbo);
+  glGenBuffers(1, &m.ebo);
+  glBindVertexArray(m.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
+               vertices.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(unsigned)),
+               indices.data(), GL_STATIC_DRAW);
+  constexpr GLsizei stride = 11 * sizeof(float);
+  const GLint sizes[4] = {3, 3, 3, 2};
+  std::size_t offset = 0;
+  for (GLuint a = 0; a < 4; ++a) {
+    glEnableVertexAttribArray(a);
+    glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<void*>(offset * sizeof(float)));
+    offset += std::size_t(sizes[a]);
+  }
+  glBindVertexArray(0);
+  m.count = static_cast<GLsizei>(indices.size());
+  return m;
+}
+
+// A texture as the shader samples it: sRGB-encoded texels decoded to linear by the sampler,
+// mipmapped (a textured face far away neither shimmers nor aliases), repeating as glTF's
+// default sampler and OBJ do. GL's first row is v = 0, the image's last.
+GLuint upload_texture(const TextureImage& image) {
+  std::vector<std::uint8_t> rows(image.rgba.size());
+  const std::size_t stride = std::size_t(image.width) * 4;
+  for (int y = 0; y < image.height; ++y)
+    std::copy_n(image.rgba.begin() + std::ptrdiff_t(std::size_t(image.height - 1 - y) * stride),
+                stride, rows.begin() + std::ptrdiff_t(std::size_t(y) * stride));
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  if (image.width > max_size || image.height > max_size)
+    gl_fail("texture " + image.source + " of " + std::to_string(image.width) + "x" +
+            std::to_string(image.height) + " exceeds this GPU's limit of " +
+            std::to_string(max_size) + " pixels per side");
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, image.width, image.height, 0, GL_RGBA,
+               GL_UNSIGNED_BYTE, rows.data());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return texture;
+}
+
 }  // namespace
 
 void Mesh::release() {
   glDeleteVertexArrays(1, &vao);
   glDeleteBuffers(1, &vbo);
   glDeleteBuffers(1, &ebo);
+  if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
+  textures.clear();
+  parts.clear();
   vao = vbo = ebo = 0;
 }
 
@@ -162,7 +224,9 @@ Mesh make_marked_sphere(int rings, int segments) {
   return mesh;
 }
 
-Mesh make_model(const TriangleMesh& mesh) {
+Mesh make_model(const TriangleMesh& mesh, const MeshAppearance* look,
+                const Vec3& body_color_linear) {
+  if (look != nullptr && !look->has_materials()) look = nullptr;
   const std::size_t nt = mesh.triangles.size();
   std::vector<Vec3> face_normal(nt);  // area-weighted (length = 2 × area)
   std::vector<std::vector<std::uint32_t>> faces_of(mesh.vertices.size());
@@ -173,23 +237,56 @@ Mesh make_model(const TriangleMesh& mesh) {
     for (std::uint32_t v : tri) faces_of[v].push_back(static_cast<std::uint32_t>(t));
   }
   const double crease_cos = std::cos(radians(40.0));
+  // With materials, the triangles in material order (stable), one part per material.
+  std::vector<std::size_t> order(nt);
+  for (std::size_t t = 0; t < nt; ++t) order[t] = t;
+  if (look != nullptr)
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return look->triangle_material[a] < look->triangle_material[b];
+    });
   std::vector<float> v;
-  v.reserve(nt * 18);
+  v.reserve(nt * (look ? 33 : 18));
   std::vector<unsigned> idx;
   idx.reserve(nt * 3);
-  for (std::size_t t = 0; t < nt; ++t) {
+  Mesh out_parts;
+  std::uint32_t current = UINT32_MAX;  // the material of the part being filled
+  for (const std::size_t t : order) {
     const Vec3 own = face_normal[t].normalized();
-    for (std::uint32_t corner : mesh.triangles[t]) {
+    const MeshMaterial* material = nullptr;
+    if (look != nullptr) {
+      const std::uint32_t m = look->triangle_material[t];
+      material = &look->materials[m];
+      if (m != current)
+        out_parts.parts.push_back({GLsizei(idx.size()), 0, GLuint(material->texture + 1)});
+      current = m;
+      out_parts.parts.back().count += 3;
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t corner = mesh.triangles[t][k];
       Vec3 n = Vec3::Zero();
       for (std::uint32_t f : faces_of[corner])
         if (face_normal[f].normalized().dot(own) >= crease_cos) n += face_normal[f];
       n = n.squaredNorm() > 0.0 ? n.normalized() : own;
       const Vec3& p = mesh.vertices[corner];
       for (double x : {p.x(), p.y(), p.z(), n.x(), n.y(), n.z()}) v.push_back(float(x));
+      if (material != nullptr) {
+        const Vec3 base = material->use_body_color ? body_color_linear : material->base_color_linear;
+        const Vec3 albedo = base.cwiseProduct(look->corner_color[t][k]);
+        const Eigen::Vector2d& uv = look->corner_uv[t][k];
+        for (double x : {albedo.x(), albedo.y(), albedo.z(), uv.x(), uv.y()})
+          v.push_back(float(x));
+      }
       idx.push_back(static_cast<unsigned>(idx.size()));
     }
   }
-  return upload(v, idx);
+  if (look == nullptr) return upload(v, idx);
+  Mesh m = upload_with_materials(v, idx);
+  // Each part's texture index (stored + 1 above) becomes the GL texture.
+  for (const TextureImage& image : look->textures) m.textures.push_back(upload_texture(image));
+  m.parts = std::move(out_parts.parts);
+  for (MeshPart& part : m.parts) part.texture = part.texture == 0 ? 0 : m.textures[part.texture - 1];
+  if (glGetError() != GL_NO_ERROR) gl_fail("uploading a model's materials failed");
+  return m;
 }
 
 Mesh make_floor_quad() {

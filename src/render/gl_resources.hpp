@@ -6,6 +6,7 @@
 #include <GL/glcorearb.h>
 
 #include <string>
+#include <vector>
 
 #include "tumble/mesh.hpp"
 
@@ -18,12 +19,23 @@ namespace tumble {
 /// version line and shaders/common.glsl (shared lighting) in front.
 GLuint link_program(const char* vert_name, const char* frag_name);
 
-/// An indexed triangle mesh of interleaved position + normal (attributes 0 and 1).
+/// A run of a model's indices drawn with one texture (or none).
+struct MeshPart {
+  GLsizei first = 0, count = 0;
+  GLuint texture = 0;  ///< 0: untextured
+};
+
+/// An indexed triangle mesh of interleaved position + normal (attributes 0 and 1); a model with
+/// materials also has a linear albedo (2) and texture coordinates (3) per corner.
 struct Mesh {
   GLuint vao = 0, vbo = 0, ebo = 0;
   GLsizei count = 0;
   /// A marked sphere: its first `marked` indices are the marking (drawn in a second colour).
   GLsizei marked = 0;
+  /// A model drawn in its own materials: its runs of indices, one per material (in order); empty
+  /// for a mesh drawn in one uniform colour.
+  std::vector<MeshPart> parts;
+  std::vector<GLuint> textures;  ///< owned: the model's textures
   void release();  ///< deletes the GL objects (an explicit call: the context must be current)
 };
 
@@ -36,6 +48,11 @@ Mesh make_floor_quad();                               ///< [-1, 1]² at y = 0, n
 /// A model's triangles (model frame), with normals computed per corner: the area-weighted
 /// average of the normals of the faces around the vertex that lie within 40° of the corner's
 /// own face, so curved surfaces shade smoothly and edges stay sharp.
-Mesh make_model(const TriangleMesh& mesh);
+/// With `look` (its materials, textures and vertex colours, per triangle), each corner also
+/// carries its linear albedo (material colour × vertex colour; `body_color_linear` for the parts
+/// whose material is not the file's) and texture coordinates, the triangles are grouped by
+/// material, and each texture is uploaded (sRGB, mipmapped, repeating).
+Mesh make_model(const TriangleMesh& mesh, const MeshAppearance* look = nullptr,
+                const Vec3& body_color_linear = Vec3::Ones());
 
 }  // namespace tumble

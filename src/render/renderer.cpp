@@ -54,6 +54,9 @@ struct Renderer::Impl {
   GLuint mesh_program = 0, floor_program = 0, fxaa_program = 0;
   Mesh cube, sphere, ball, floor;
   GLuint empty_vao = 0;                           // the full-screen triangle needs no buffers
+  // Models' textures are bound here; unit 0 is FXAA's.
+  static constexpr GLint kModelTextureUnit = 1;
+  double checker_m = 1.0;  // the side of the floor's squares, m (floor_tile_m)
   GLuint ms_fbo = 0, ms_color = 0, ms_depth = 0;  // multisampled target (msaa)
   GLuint tex_color = 0;  // where fxaa reads the scene from: its edge rectangles, copied
   GLuint fbo = 0, color = 0, depth = 0;  // single-sample target read back
@@ -147,11 +150,14 @@ struct Renderer::Impl {
     }
     make_target(fbo, color, depth, 0);
     mesh_program = link_program("mesh.vert", "mesh.frag");
+    glUseProgram(mesh_program);
+    glUniform1i(glGetUniformLocation(mesh_program, "u_texture"), kModelTextureUnit);
     floor_program = link_program("floor.vert", "floor.frag");
     cube = make_cube();
     sphere = make_sphere();
     ball = make_marked_sphere();
     floor = make_floor_quad();
+    checker_m = floor_tile_m(scene, models);
     // Each model is uploaded once; a frame only sets its transform.
     model_meshes.resize(scene.bodies.size());
     model_lo.assign(scene.bodies.size(), Vec3::Constant(-0.5));
@@ -160,7 +166,12 @@ struct Renderer::Impl {
       if (scene.bodies[i].shape != Shape::Mesh) continue;
       const MeshBody* model = models ? models->model(i) : nullptr;
       if (!model) gl_fail("mesh body \"" + scene.bodies[i].name + "\" has no loaded model");
-      model_meshes[i] = make_model(model->mesh);
+      // The model's own materials, unless the scene gives the body a colour.
+      const BodySpec& spec = scene.bodies[i];
+      const Vec3 body = color_of(spec.color);
+      model_meshes[i] = make_model(
+          model->mesh, spec.color_given ? nullptr : &model->appearance,
+          Vec3(srgb_to_linear(body.x()), srgb_to_linear(body.y()), srgb_to_linear(body.z())));
       Vec3 lo = model->mesh.vertices.front(), hi = lo;
       for (const Vec3& p : model->mesh.vertices) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
       model_lo[i] = lo;
@@ -204,8 +215,10 @@ struct Renderer::Impl {
   }
 
   // Where the floor fades away. A perspective camera sees it shrink towards a horizon: it fades
-  // 12-40 m around what the camera looks at, farther for a camera farther away (1.2 and 4 times
-  // its distance, so a framed 50 m throw keeps its ground; a camera within 10 m gets 12-40 m).
+  // 12-40 squares around what the camera looks at (12-40 m with 1 m squares), farther for a
+  // camera farther away (1.2 and 4 times its distance, so a framed 50 m throw keeps its ground;
+  // a camera within 10 squares gets 12-40 squares). A floor of the bodies' scale: past 40
+  // squares a square is a few pixels at most, and the filtered checker is an even grey.
   // An orthographic camera sees it at one scale however deep, so a
   // floor there would fill the picture below the horizon with tiles flattened into stripes: it
   // is a band along the view's depth instead, full within 0.3 ortho_height of what the camera
@@ -218,12 +231,18 @@ struct Renderer::Impl {
   FloorFade floor_fade(const World& world) const {
     const CameraSettings& cam = scene.camera;
     FloorFade f;
+    f.start_m *= checker_m;
+    f.end_m *= checker_m;
     const Vec3 target = camera_target(scene, world);
     const Vec3 view = target - camera_eye(scene, world);
     if (cam.projection != Projection::Orthographic) {
       f.centre = Eigen::Vector2d(target.x(), target.z());
       f.start_m = std::max(f.start_m, 1.2 * view.norm());
       f.end_m = std::max(f.end_m, 4.0 * view.norm());
+      // Gone before the far plane (camera.cpp: 200 m + 4 distances) could cut it off: a floor
+      // point at end_m from the target is at most distance + end_m from the eye.
+      f.end_m = std::min(f.end_m, 200.0 + 3.0 * view.norm());
+      f.start_m = std::min(f.start_m, 0.3 * f.end_m);
       return f;
     }
     const Eigen::Vector2d along(view.x(), view.z());
@@ -370,7 +389,7 @@ struct Renderer::Impl {
     if (scene.floor) {
       const double h = scene.floor->height;
       // Floor: a square around the fade's centre, big enough to reach the fade-out.
-      const double extent = std::max(60.0, 1.5 * f.end_m);
+      const double extent = std::max(60.0 * checker_m, 1.5 * f.end_m);
       Mat4 model = Mat4::Identity();
       model(0, 0) = model(2, 2) = extent;
       model(0, 3) = f.centre.x();
@@ -389,6 +408,7 @@ struct Renderer::Impl {
                   float(f.axis.y()));
       set(floor_program, "u_fade_start", f.start_m);
       set(floor_program, "u_fade_end", f.end_m);
+      set(floor_program, "u_checker_m", checker_m);
       glBindVertexArray(floor.vao);
       glDrawElements(GL_TRIANGLES, floor.count, GL_UNSIGNED_INT, nullptr);
       if (scene.light.shadows && light.y() < -1e-3)
@@ -401,6 +421,7 @@ struct Renderer::Impl {
     set(mesh_program, "u_eye", eye(*exposures.back().world));
     set(mesh_program, "u_shadow", 0.0);
     set(mesh_program, "u_opacity", 1.0);
+    glUniform1i(glGetUniformLocation(mesh_program, "u_material"), 0);
     // Opaque bodies first, writing depth; then the translucent ones over them.
     for (const Exposure& e : exposures)
       if (e.opacity >= 1.0)
@@ -421,6 +442,23 @@ struct Renderer::Impl {
                      reinterpret_cast<const void*>(sizeof(unsigned) * std::size_t(ball.marked)));
       set(mesh_program, "u_color", Vec3(0.5 * (color_of(scene.bodies[i].color) + Vec3::Ones())));
       glDrawElements(GL_TRIANGLES, ball.marked, GL_UNSIGNED_INT, nullptr);
+      return;
+    }
+    const Mesh& mesh = model_meshes[i];
+    if (scene.bodies[i].shape == Shape::Mesh && !mesh.parts.empty()) {
+      // In its own materials: a run of indices per material, each with its texture or none.
+      glUniform1i(glGetUniformLocation(mesh_program, "u_material"), 1);
+      glBindVertexArray(mesh.vao);
+      glActiveTexture(GL_TEXTURE0 + kModelTextureUnit);
+      for (const MeshPart& part : mesh.parts) {
+        glBindTexture(GL_TEXTURE_2D, part.texture);
+        glUniform1i(glGetUniformLocation(mesh_program, "u_textured"), part.texture != 0 ? 1 : 0);
+        glDrawElements(GL_TRIANGLES, part.count, GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(sizeof(unsigned) * std::size_t(part.first)));
+      }
+      glBindTexture(GL_TEXTURE_2D, 0);
+      glActiveTexture(GL_TEXTURE0);
+      glUniform1i(glGetUniformLocation(mesh_program, "u_material"), 0);
       return;
     }
     draw_mesh(i);
@@ -685,6 +723,7 @@ bool Renderer::reuse_for(const Scene& scene, const SceneModels* models, Backdrop
   m.model_meshes.assign(scene.bodies.size(), Mesh{});
   m.model_lo.assign(scene.bodies.size(), Vec3::Constant(-0.5));
   m.model_hi.assign(scene.bodies.size(), Vec3::Constant(0.5));
+  m.checker_m = floor_tile_m(scene, models);
   return true;
 }
 void Renderer::begin_readback() {

@@ -252,7 +252,9 @@ BodySpec read_body(const toml::table& table, std::size_t number, const std::stri
   b.angular_velocity = r.vec3("angular_velocity").value_or(b.angular_velocity);
   b.restitution = r.number("restitution", kUnitInterval);
   b.friction = r.number("friction", kNonNegative);
-  b.color = r.color("color").value_or(kPalette[(number - 1) % kPalette.size()]);
+  const std::optional<Color> color = r.color("color");
+  b.color_given = color.has_value();
+  b.color = color.value_or(kPalette[(number - 1) % kPalette.size()]);
   return b;
 }
 

@@ -106,3 +106,46 @@ TEST(Meshes, MissingOrBrokenModelIsExit2NamingTheFileAndTheBody) {
 
 }  // namespace
 }  // namespace tumble_e2e
+
+namespace tumble_e2e {
+namespace {
+
+// Issue 23: a model's texture that is missing is a clear error (exit 2) naming the texture, the
+// model and the body, for render and simulate alike (the model is loaded the same way).
+TEST(MeshMaterials, AMissingTextureIsExitTwoNamingIt) {
+  const TestDir dir;
+  const fs::path data = source_dir() / "tests/unit/mesh/data/materials";
+  for (const char* name : {"missing_texture.obj", "missing_texture.mtl"})
+    fs::copy_file(data / name, dir / name);
+  write_scene(dir.path(), "s.toml", mesh_scene("mesh = \"missing_texture.obj\""));
+  {
+    const RunResult r = run_tumble({"render", "s.toml", "--out", "o", "--duration", "0.1",
+                                    "--size", "64x48", "--no-mp4", "--still", "0"},
+                                   dir.path());
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    EXPECT_NE(r.err.find("no_such_texture.png"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("missing_texture.obj"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("body \"m\""), std::string::npos) << r.err;
+    // Missing, not "outside the model's folder": a model named relative to the working folder
+    // confines its textures to that folder.
+    EXPECT_NE(r.err.find("no_such_texture.png\": no such file"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "o/still_0.png"));
+  }
+  const RunResult s =
+      run_tumble({"simulate", "s.toml", "--out", "o", "--duration", "0.1"}, dir.path());
+  EXPECT_EQ(s.exit_code, 2) << describe(s);
+  EXPECT_NE(s.err.find("no_such_texture.png"), std::string::npos) << s.err;
+}
+
+// The example scene of a model in its own materials renders (its texture beside it is found).
+TEST(MeshMaterials, TheCrateExampleRenders) {
+  const TestDir dir;
+  const RunResult r = run_tumble({"render", (source_dir() / "assets/scenes/crate.toml").string(),
+                                  "--out", "o", "--no-mp4", "--still", "1", "--size", "160x90"},
+                                 dir.path());
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(fs::exists(dir / "o/still_1.png"));
+}
+
+}  // namespace
+}  // namespace tumble_e2e

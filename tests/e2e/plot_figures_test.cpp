@@ -144,14 +144,15 @@ TEST(Plot, EveryPointIsTheTrajectoryThroughTheAxes) {
     EXPECT_LE(static_cast<long>(panel.mark_xs.size()), contacts);
     for (const double mark : panel.mark_xs) {
       const double tm = (mark - time_maps[0].b) / time_maps[0].a;
-      // The lowest sample within a frame of the mark is a local minimum of the height.
+      // The lowest sample within a frame of the mark is a local minimum of the height: the
+      // ball's centre one radius (0.12 m) above the floor, give or take a frame's fall.
       std::size_t k = 0;
       for (std::size_t i = 0; i < t.size(); ++i)
         if (std::abs(t[i] - tm) < std::abs(t[k] - tm)) k = i;
       ASSERT_GT(k, 0u);
       ASSERT_LT(k + 1, t.size());
       const double low = std::min({height[k - 1], height[k], height[k + 1]});
-      EXPECT_LT(low, 0.05) << "mark at t = " << tm << " s is not at a bounce";
+      EXPECT_LT(low, 0.12 + 0.05) << "mark at t = " << tm << " s is not at a bounce";
     }
   }
   bool listed = false;
