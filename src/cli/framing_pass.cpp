@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tumble/camera.hpp"
 #include "tumble/camera_framing.hpp"
 #include "tumble/error.hpp"
 #include "tumble/sampler.hpp"
@@ -108,7 +109,11 @@ FramingPass framing_pass(const Scene& scene, const WorldDef& def,
   }
   const double aspect = double(scene.render.width) / scene.render.height;
   const CameraSettings& stated = scene.camera;
-  out.camera = fit_camera(stated, points, aspect, !stated.target_given, !stated.ortho_height_given);
+  // A followed body is framed alone and the camera moves with it (frame_camera() decides that
+  // from t = 0 without the run); the kept worlds serve the drawing all the same.
+  out.camera = followed_body(scene) ? frame_camera(scene, def)
+                                    : fit_camera(stated, points, aspect, !stated.target_given,
+                                                 !stated.ortho_height_given);
   out.seconds = seconds_since(start);
   return out;
 }

@@ -229,7 +229,7 @@ class Chromium:
         os.close(from_browser_w)
         self.buffer, self.last_id, self.events = b"", 0, []
 
-    def receive(self, timeout=30.0):
+    def receive(self, timeout=120.0):  # a cold start beside other tests on 2 cores can be slow
         deadline = time.monotonic() + timeout
         while b"\0" not in self.buffer:
             left = deadline - time.monotonic()
