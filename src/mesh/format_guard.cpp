@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -197,11 +198,89 @@ std::string guard_collada(const std::filesystem::path& file) {
   return "";
 }
 
+
+// assimp 5.2.5's OFF reader allocates for the vertex and face counts of the header before it
+// reads a single line, and parses them with a 32-bit accumulator that wraps: a count with 27
+// digits became 2.4 billion faces, 38 GB (found by fuzz_mesh in CI). The header is read as the
+// reader reads it (optional ST, C, N, 4, n prefixes, optional "OFF", '#' comments), each count
+// must be a whole number below 2^32, and the counts must fit in the bytes of the file: a valid
+// vertex line holds `dimensions` numbers (at least two bytes each), a face line at least two.
+std::string guard_off(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  std::error_code ec;
+  const std::uintmax_t file_bytes = std::filesystem::file_size(file, ec);
+
+  std::size_t at = 0;
+  auto line_end = [&](char c) { return c == '\n' || c == '\r'; };
+  auto next_token = [&] {
+    while (at < head.size() && (head[at] == ' ' || head[at] == '\t' || line_end(head[at]))) ++at;
+    while (at < head.size() && head[at] == '#') {
+      while (at < head.size() && !line_end(head[at])) ++at;
+      while (at < head.size() && (head[at] == ' ' || head[at] == '\t' || line_end(head[at]))) ++at;
+    }
+  };
+  auto starts = [&](std::string_view word) { return head.compare(at, word.size(), word) == 0; };
+  // A count as a run of digits; nullopt past 32 bits (what the reader would wrap).
+  auto count = [&]() -> std::optional<std::uint64_t> {
+    std::uint64_t value = 0;
+    while (at < head.size() && head[at] >= '0' && head[at] <= '9') {
+      value = 10 * value + static_cast<std::uint64_t>(head[at++] - '0');
+      if (value > 0xffffffffu) return std::nullopt;
+    }
+    return value;
+  };
+  const std::string bad = "not a valid OFF file: ";
+
+  next_token();
+  if (starts("ST")) at += 2;
+  if (starts("C")) ++at;
+  if (starts("N")) ++at;
+  bool homogeneous = false, has_dimension = false;
+  if (starts("4")) {
+    homogeneous = true;
+    ++at;
+  }
+  if (starts("n")) {
+    has_dimension = true;
+    ++at;
+  }
+  if (starts("OFF"))
+    at += 3;
+  else
+    homogeneous = false;  // no header: the reader forgets the 4 (and keeps the n)
+  next_token();
+  std::uint64_t dimensions = 3;
+  if (has_dimension) {
+    const auto d = count();
+    if (!d) return bad + "the dimension in its header is out of range";
+    dimensions = *d;
+    next_token();
+  }
+  next_token();
+  const auto vertices = count();
+  next_token();
+  const auto faces = count();
+  if (!vertices || !faces)
+    return bad + "a count in its header is out of range (at most " +
+           std::to_string(0xffffffffu) + ")";
+  // Vertex lines hold the coordinates (plus w when homogeneous); 0 dimensions still need a line.
+  const std::uint64_t per_vertex = std::max<std::uint64_t>(1, 2 * (dimensions + homogeneous));
+  if (dimensions <= 3 && *vertices * per_vertex + 2 * *faces > file_bytes + 1)
+    return bad + "its header declares " + std::to_string(*vertices) + " vertices and " +
+           std::to_string(*faces) + " faces, more than its " + std::to_string(file_bytes) +
+           " bytes can hold";
+  return "";
+}
+
 }  // namespace
 
 std::string guard_format(const std::filesystem::path& file, const std::string& extension) {
   if (extension == "ply") return guard_ply(file);
   if (extension == "dae") return guard_collada(file);
+  if (extension == "off") return guard_off(file);
   return "";
 }
 
