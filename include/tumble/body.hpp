@@ -100,6 +100,14 @@ class RigidBody {
   const std::vector<Vec3>& edge_directions() const { return edge_directions_; }
   /// Distance from the centre of mass to the farthest point of the shape.
   double bounding_radius() const { return bounding_radius_; }
+  /// Half the edges of the smallest box about the centre of mass, along the body's axes, that
+  /// holds the shape (zero for a particle).
+  const Vec3& half_extent_body() const { return half_extent_body_; }
+  /// Half the edges of a world-axis box about the centre of mass that holds the shape at
+  /// orientation R: the body box's, |R| h, and never more than the bounding sphere's.
+  Vec3 half_extent_world(const Mat3& R) const {
+    return (R.cwiseAbs() * half_extent_body_).cwiseMin(Vec3::Constant(bounding_radius_));
+  }
   double mass() const { return mass_; }
   double inverse_mass() const { return inverse_mass_; }
   const Vec3& inertia_body() const { return inertia_body_; }
@@ -141,6 +149,7 @@ class RigidBody {
   std::vector<HullFace> faces_;
   std::vector<Vec3> edge_directions_;
   double bounding_radius_;
+  Vec3 half_extent_body_;
   double mass_, inverse_mass_;
   Vec3 inertia_body_, inverse_inertia_body_;
   std::vector<Vec3> vertices_;

@@ -16,6 +16,7 @@
 /// inside every derivative evaluation. Friction (Coulomb) only when friction > 0.
 
 #include <algorithm>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -67,6 +68,9 @@ struct WorldDef {
   /// Tests and benchmarks: solve every resting contact with the general LCP, the reference the
   /// resting-face fast path is checked against.
   bool general_contact_only = false;
+  /// Called before every step and between the events of an island's step; it may throw to stop
+  /// the run (the command line's interrupt check: a step of a chattering pile can take long).
+  std::function<void()> poll;
 };
 
 /// Tolerances of the contact model, with their reasons. Physics has no preferred scale: every

@@ -141,7 +141,8 @@ int run_render(const RenderOptions& o, RenderSession* session) {
     bad("--webp: a WebP is at most " + std::to_string(WebpWriter::kMaxSide) +
         " pixels a side; got " + std::to_string(width) + "x" + std::to_string(height));
   const SceneModels models = load_models(scene);
-  const WorldDef def = make_world_def(scene, models);
+  WorldDef def = make_world_def(scene, models);
+  def.poll = throw_if_interrupted;  // a long step stops at a signal too
   std::vector<double> stills = o.stills;
   for (double& t : stills) t += 0.0;  // -0 names the same still as 0
   std::sort(stills.begin(), stills.end());

@@ -101,7 +101,8 @@ int run_simulate(const SimulateOptions& o) {
     throw Error(ErrorKind::BadInput, "--rate must be a positive number of Hz, at most 1e6");
   const SceneModels models = load_models(scene);
   // adaptive: its largest step defaults to the sample interval, so sampling never re-steps.
-  const WorldDef def = make_world_def(scene, models, 1.0 / rate);
+  WorldDef def = make_world_def(scene, models, 1.0 / rate);
+  def.poll = throw_if_interrupted;  // a long step stops at a signal too
   const double duration = scene.simulation.duration_s, dt = def.dt_s;
   const long steps = step_count_for(duration, dt);
   const long samples = o.every_step ? steps + 1 : sample_count(duration, rate);

@@ -90,6 +90,14 @@ std::vector<Vec3> distinct_edge_directions(const std::vector<Vec3>& v,
   return dirs;
 }
 
+Vec3 half_extent(const BodyDef& def) {
+  if (def.particle) return Vec3::Zero();
+  if (def.shape == ShapeKind::Sphere) return Vec3::Constant(def.radius_m);
+  Vec3 h = Vec3::Zero();
+  for (const Vec3& v : def.vertices) h = h.cwiseMax(v.cwiseAbs());
+  return h;
+}
+
 double farthest(const BodyDef& def) {
   if (def.shape == ShapeKind::Sphere) return def.radius_m;
   double r = 0.0;
@@ -111,6 +119,7 @@ RigidBody::RigidBody(const BodyDef& def)
                  : def.faces),
       edge_directions_(distinct_edge_directions(def.vertices, faces_)),
       bounding_radius_(def.particle ? 0.0 : farthest(def)),
+      half_extent_body_(half_extent(def)),
       mass_(def.mass_kg),
       inverse_mass_(def.fixed ? 0.0 : 1.0 / def.mass_kg),
       inertia_body_(def.particle ? Vec3(Vec3::Zero()) : def.inertia_body),

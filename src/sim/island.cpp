@@ -457,9 +457,16 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
   };
   Eigen::VectorXd vn = speeds();
   const double fastest = std::max(0.0, -vn.minCoeff());
-  if (fastest == 0.0) return 0.0;
-  // Approach slower than 1e-9 of the impact's is round-off of an exchange already made.
-  const double eps = 1e-9 * fastest;
+  // Approach slower than 1e-9 of the impact's is round-off of an exchange already made, and
+  // under gravity one slower than 1e-12 sqrt(g l) (l: the smallest member's reach; 1e-6 of the
+  // speed below which contacts are held) is round-off of a resting contact: 4e-29 m/s after a
+  // friction impulse, whose LCP (|b| at round-off, a rank-deficient A) only stalls pivoting.
+  double smallest = INFINITY;
+  for (std::size_t k = 0; k < s.size(); ++k)
+    smallest = std::min(smallest, v.member(static_cast<int>(k)).bounding_radius());
+  const double eps =
+      std::max(1e-9 * fastest, 1e-12 * std::sqrt(v.forces->gravity.norm() * smallest));
+  if (fastest <= eps) return 0.0;
   // Only the pairs that approach take part in a pass (all their touching points together, as
   // a face lands on the floor at once), and passes repeat until none does: an impact then
   // travels along a chain of touching bodies (Newton's cradle) instead of being shared out at
@@ -507,9 +514,22 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
       // approaching pairs that is not leaving faster than the rest speed, least squares
       // (minimum norm) over dependent points. It is a projection in the kinetic metric, so it
       // never gains energy.
+      // The same holds across pairs: a domino wedged between the floor and the next one,
+      // stopped at one, lifts off the other and falls back, in impacts that never end. So the
+      // touching points of every pair that shares a body with an approaching one take part.
+      std::vector<char> body_hit(s.size(), 0);
+      for (int i : set) {
+        const IslandPair& p = v.island->pairs[contacts[i].pair];
+        body_hit[static_cast<std::size_t>(p.b.index)] = 1;
+        if (p.a.kind == Side::Member) body_hit[static_cast<std::size_t>(p.a.index)] = 1;
+      }
       std::vector<int> plastic;
-      for (int i : set)
-        if (vn(i) <= rest_speed) plastic.push_back(i);
+      for (int i = 0; i < n; ++i) {
+        const IslandPair& p = v.island->pairs[contacts[i].pair];
+        const bool joined = body_hit[static_cast<std::size_t>(p.b.index)] ||
+                            (p.a.kind == Side::Member && body_hit[static_cast<std::size_t>(p.a.index)]);
+        if (joined && vn(i) <= rest_speed) plastic.push_back(i);
+      }
       const int q = static_cast<int>(plastic.size());
       Eigen::MatrixXd Ap(q, q);
       Eigen::VectorXd rhs(q);
@@ -575,7 +595,7 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
     vn = speeds();
     std::vector<char> approaching_pair(v.island->pairs.size(), 0);
     for (int i = 0; i < n; ++i)
-      if (vn(i) < 0.0) approaching_pair[contacts[i].pair] = 1;
+      if (vn(i) < -eps) approaching_pair[contacts[i].pair] = 1;
     std::vector<int> set;
     for (int i = 0; i < n; ++i)
       if (approaching_pair[contacts[i].pair]) set.push_back(i);

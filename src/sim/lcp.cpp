@@ -5,6 +5,7 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <numeric>
 
 namespace tumble {
 namespace {
@@ -130,12 +131,7 @@ bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
     if (a(d) >= -scale_w) continue;
     // Drive row d.
     while (a(d) < -scale_w) {
-      if (++pivots > budget) {
-        f.setZero();
-        projected_gauss_seidel(A, b, f);
-        std::fill(active.begin(), active.end(), 0);
-        return false;
-      }
+      if (++pivots > budget) return false;
       // Direction: Δf_d = 1, the clamped rows keep Δa = 0: A_CC Δf_C = −A_Cd.
       std::vector<int> set;
       for (int i = 0; i < n; ++i)
@@ -161,12 +157,7 @@ bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
           if (si < s) s = si, j = i;
         }
       }
-      if (j < 0 || !std::isfinite(s)) {  // unbounded: no solution reachable (friction)
-        f.setZero();
-        projected_gauss_seidel(A, b, f);
-        std::fill(active.begin(), active.end(), 0);
-        return false;
-      }
+      if (j < 0 || !std::isfinite(s)) return false;  // unbounded: none reachable (friction)
       f += s * df;
       a += s * da;
       if (j == d) {
@@ -190,12 +181,119 @@ bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
   return true;
 }
 
+
+// Whether f solves the LCP within the pivoting's tolerances: f >= 0, w = A f + b >= 0, and
+// w = 0 where f > 0.
+bool complementary(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& f) {
+  const double scale_w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  const double scale_f = scale_w / std::max(A.cwiseAbs().maxCoeff(), 1e-300);
+  const Eigen::VectorXd w = A * f + b;
+  for (Eigen::Index i = 0; i < b.size(); ++i) {
+    if (f(i) < -scale_f || w(i) < -scale_w) return false;
+    if (f(i) > scale_f && std::abs(w(i)) > 1e3 * scale_w) return false;
+  }
+  return true;
+}
+
+// Lemke's complementary pivoting (Cottle, Pang & Stone, "The Linear Complementarity Problem",
+// 4.4), for what Dantzig's method cannot finish: sliding friction makes A unsymmetric, and
+// then principal pivoting may cycle or find its step unbounded although a solution exists.
+// Lemke's method finds one for every copositive-plus A (contact matrices, and those of
+// moderate friction) or ends on a ray, proving there is none it can reach. The system
+// w − A f − d z0 = b, d = 1, on a dense tableau (a rank-one update per pivot, O(n²)); the
+// lexicographic ratio test (rows of the basis inverse) makes it finite on degenerate problems,
+// which contact gives (four corners of a face). The clamped set found is solved again by the
+// minimum-norm solve of the principal pivoting, so the answer is the same kind as its.
+bool lemke(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+           std::vector<char>& active) {
+  const int n = static_cast<int>(b.size());
+  const int z0 = 2 * n;  // columns: w (0..n-1), f (n..2n-1), the artificial z0
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, 2 * n + 1);
+  T.leftCols(n).setIdentity();
+  T.middleCols(n, n) = -A;
+  T.col(z0).setConstant(-1.0);
+  Eigen::VectorXd rhs = b;
+  std::vector<int> basis(static_cast<std::size_t>(n));
+  std::iota(basis.begin(), basis.end(), 0);
+  auto exchange = [&](int r, int c) {
+    const double p = T(r, c);
+    T.row(r) /= p;
+    rhs(r) /= p;
+    for (int i = 0; i < n; ++i) {
+      const double x = T(i, c);
+      if (i == r || x == 0.0) continue;
+      T.row(i) -= x * T.row(r);
+      rhs(i) -= x * rhs(r);
+    }
+    basis[static_cast<std::size_t>(r)] = c;
+  };
+  Eigen::Index first = 0;
+  b.minCoeff(&first);
+  int leaving = basis[static_cast<std::size_t>(first)];
+  exchange(static_cast<int>(first), z0);
+  for (int pivots = 0; pivots < 20 * n + 50; ++pivots) {
+    const int entering = leaving < n ? leaving + n : leaving - n;  // the complement
+    const double column = T.col(entering).cwiseAbs().maxCoeff();
+    int r = -1;
+    for (int i = 0; i < n; ++i) {
+      const double a = T(i, entering);
+      if (!(a > 1e-12 * column)) continue;
+      if (r < 0) {
+        r = i;
+        continue;
+      }
+      // The smallest ratio; ties broken by z0 leaving, then lexicographically.
+      const double ratio = rhs(i) / a, best = rhs(r) / T(r, entering);
+      const double tie = 1e-14 * std::max(std::abs(best), 1e-300);
+      if (ratio < best - tie) {
+        r = i;
+      } else if (ratio <= best + tie && basis[static_cast<std::size_t>(r)] != z0) {
+        if (basis[static_cast<std::size_t>(i)] == z0) {
+          r = i;
+          continue;
+        }
+        for (int k = 0; k < n; ++k) {
+          const double li = T(i, k) / a, lr = T(r, k) / T(r, entering);
+          if (li < lr - 1e-14) {
+            r = i;
+            break;
+          }
+          if (li > lr + 1e-14) break;
+        }
+      }
+    }
+    if (r < 0) return false;  // a ray: no solution on this path
+    leaving = basis[static_cast<std::size_t>(r)];
+    exchange(r, entering);
+    if (leaving != z0) continue;
+    // Complementary: the forces in the basis are the clamped set.
+    std::vector<int> clamped;
+    for (int i = 0; i < n; ++i)
+      if (basis[static_cast<std::size_t>(i)] >= n && basis[static_cast<std::size_t>(i)] < z0)
+        clamped.push_back(basis[static_cast<std::size_t>(i)] - n);
+    std::sort(clamped.begin(), clamped.end());
+    f = Eigen::VectorXd::Zero(n);
+    const Eigen::VectorXd fc = solve_subset(A, clamped, -b);
+    for (std::size_t k = 0; k < clamped.size(); ++k) f(clamped[k]) = std::max(fc(k), 0.0);
+    if (!complementary(A, b, f)) {  // the tableau's own values, where the re-solve is worse
+      f.setZero();
+      for (int i = 0; i < n; ++i)
+        if (basis[static_cast<std::size_t>(i)] >= n && basis[static_cast<std::size_t>(i)] < z0)
+          f(basis[static_cast<std::size_t>(i)] - n) = std::max(rhs(i), 0.0);
+      if (!complementary(A, b, f)) return false;
+    }
+    active.assign(static_cast<std::size_t>(n), 0);
+    for (int i : clamped) active[static_cast<std::size_t>(i)] = 1;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                         std::vector<char>& active, bool ridge_on_stall) {
-  const bool solved = pivot(A, b, f, active);
-  if (solved || !ridge_on_stall) return solved;
+  if (pivot(A, b, f, active)) return true;
   // Contact matrices are only semidefinite: four coplanar points of a face, or a light body
   // pressed between a heavy one and the floor, give dependent rows, where pivoting can stall
   // (and its least-squares steps choose among many force distributions by round-off, so a
@@ -204,10 +302,18 @@ bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eige
   // Dantzig's method reaches it; it moves w = A f + b by 1e-10 |A| f, a tenth of the
   // tolerance. Only on a stall, and where the caller asks (impacts: a push must not
   // depend on round-off), so that every regular solve stays exact to round-off.
-  Eigen::MatrixXd ridged = A;
-  ridged.diagonal().array() += 1e-10 * std::max(A.diagonal().cwiseAbs().maxCoeff(), 1e-300);
-  std::fill(active.begin(), active.end(), 0);
-  return pivot(ridged, b, f, active);
+  if (ridge_on_stall) {
+    Eigen::MatrixXd ridged = A;
+    ridged.diagonal().array() += 1e-10 * std::max(A.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+    std::fill(active.begin(), active.end(), 0);
+    if (pivot(ridged, b, f, active)) return true;
+  }
+  if (lemke(A, b, f, active)) return true;
+  // No method reached a solution (a friction problem without one: Painlevé's paradox).
+  f = Eigen::VectorXd::Zero(b.size());
+  projected_gauss_seidel(A, b, f);
+  active.assign(static_cast<std::size_t>(b.size()), 0);
+  return false;
 }
 
 }  // namespace tumble

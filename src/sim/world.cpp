@@ -209,6 +209,7 @@ double World::total_energy() const {
 }
 
 void World::step() {
+  if (def_.poll) def_.poll();
   advance_all(def_.dt_s);
   ++steps_;
   // Time from the step count, never accumulated: t_n = n·dt exactly as the sampler computes it.
@@ -217,6 +218,7 @@ void World::step() {
 
 void World::advance(double h) {
   assert(h > 0.0 && h <= def_.dt_s * (1.0 + 1e-12));
+  if (def_.poll) def_.poll();
   advance_all(h);
   time_ += h;
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "sim_fixtures.hpp"
 #include "tumble/world.hpp"
@@ -156,6 +157,50 @@ TEST(PairImpact, EnergyIsNeverGainedAndRunsAreDeterministic) {
   EXPECT_LE(a.contact_stats().max_energy_gain_J, 1e-9);
   for (std::size_t i = 0; i < a.bodies().size(); ++i)
     EXPECT_TRUE(same_pose(a.bodies()[i].state, b.bodies()[i].state));
+}
+
+TEST(Islands, ARowOfThinPlatesIsNotOneIsland) {
+  // Dominoes 7.5 mm thick stand 30 mm apart: their bounding spheres (27 mm) overlap, their
+  // boxes do not. Until the pushed one reaches the next (at 0.129 s), the others sleep: their
+  // exact motion is none, and they are not stepped at all.
+  WorldDef def = test::world_def(Integrator::Rk4, 5e-4, /*floor=*/true, 0.1);
+  def.floor->friction = 0.6;
+  const Vec3 size(0.0075, 0.048, 0.024);
+  for (int i = 0; i < 5; ++i) {
+    BodyDef d = test::box_def(size, 650.0 * size.prod(), Vec3(0.03 * i, 0.024, 0.0));
+    d.friction = 0.4;
+    if (i == 0) {  // tipped about its front bottom edge
+      d.velocity = Vec3(0.096, 0.015, 0.0);
+      d.angular_velocity = Vec3(0.0, 0.0, -4.0);
+    }
+    def.bodies.push_back(d);
+  }
+  World w(def);
+  const World start = w;
+  for (int k = 0; k < 200; ++k) w.step();  // 0.1 s
+  EXPECT_FALSE(w.bodies()[0].at_rest);
+  for (int i = 1; i < 5; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_TRUE(w.bodies()[i].at_rest);
+    EXPECT_TRUE(same_pose(w.bodies()[i].state, start.bodies()[i].state));
+  }
+  EXPECT_EQ(w.contact_stats().impacts, 0);
+}
+
+TEST(WorldPoll, IsCalledBeforeEveryStepAndStopsTheRunWhenItThrows) {
+  WorldDef def = space();
+  def.bodies = {test::box_def(Vec3::Ones(), 1.0, Vec3::Zero())};
+  int calls = 0;
+  def.poll = [&calls] {
+    if (++calls == 4) throw std::runtime_error("stop");
+  };
+  World w(def);
+  w.step();
+  w.step();
+  w.step();
+  EXPECT_THROW(w.step(), std::runtime_error);
+  EXPECT_EQ(calls, 4);
+  EXPECT_EQ(w.step_count(), 3);
 }
 
 }  // namespace

@@ -58,5 +58,30 @@ TEST(Lcp, RandomPsdProblemsAreSolvedExactly) {
   }
 }
 
+TEST(LcpPivoting, SolvesAnUnsymmetricProblemPrincipalPivotingCannot) {
+  // A sliding-friction matrix J M⁻¹ (J − mu T)ᵀ (found by a random search, rounded to quarters)
+  // on which Dantzig's principal pivoting finds its step unbounded; Lemke's method reaches the
+  // solution, exact in quarters: f = (0.4, 1.8, 0.2, 0), w = (0, 0, 0, 1.15).
+  Eigen::MatrixXd A(4, 4);
+  A << 1.25, 0.0, 1.25, 0.0,  //
+      -1.5, 1.0, -1.0, 0.5,   //
+      1.5, -0.75, 1.25, 0.0,  //
+      0.75, 0.0, 0.5, 0.75;
+  Eigen::VectorXd b(4);
+  b << -0.75, -1.0, 0.5, 0.75;
+  Eigen::VectorXd f;
+  std::vector<char> active;
+  ASSERT_TRUE(solve_lcp_pivoting(A, b, f, active));
+  const Eigen::VectorXd expected = (Eigen::VectorXd(4) << 0.4, 1.8, 0.2, 0.0).finished();
+  EXPECT_LT((f - expected).cwiseAbs().maxCoeff(), 1e-12);  // a 4x4 solve: round-off only
+  const Eigen::VectorXd w = A * f + b;
+  EXPECT_NEAR(w(3), 1.15, 1e-12);
+  // The clamped set it found warm-starts the next solve, which then needs no pivot.
+  EXPECT_EQ(active, (std::vector<char>{1, 1, 1, 0}));
+  Eigen::VectorXd again;
+  ASSERT_TRUE(solve_lcp_pivoting(A, b, again, active));
+  EXPECT_LT((again - expected).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 }  // namespace
 }  // namespace tumble
