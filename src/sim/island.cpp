@@ -342,22 +342,8 @@ struct IslandSystem {
   bool particle(std::size_t m) const { return f.view().member(static_cast<int>(m)).is_particle(); }
   RotationRep rep() const { return f.view().rotation; }
   Rates eval(const State& s) const { return f(s); }
-  State add(const State& s, const Rates& d, double h) const {
-    State out = s;
-    for (std::size_t m = 0; m < s.size(); ++m) {
-      out[m].x += h * d[m].v;
-      out[m].P += h * d[m].F;
-      if (particle(m)) continue;
-      out[m].L += h * d[m].tau;
-      if (rep() == RotationRep::Quaternion) {
-        out[m].q.w() += h * d[m].qdot(0);
-        out[m].q.vec() += h * d[m].qdot.tail<3>();
-      } else {
-        out[m].R += h * d[m].Rdot;
-      }
-    }
-    return out;
-  }
+  // Each field moves by its own rate: a kick (momenta) then a drift (poses) is the full step.
+  State add(const State& s, const Rates& d, double h) const { return drift(kick(s, d, h), d, h); }
   State kick(const State& s, const Rates& d, double h) const {
     State out = s;
     for (std::size_t m = 0; m < s.size(); ++m) {

@@ -17,6 +17,7 @@
 
 #include "collide.hpp"
 #include "island.hpp"
+#include "time_of_impact.hpp"
 #include "tumble/world.hpp"
 
 namespace tumble {
@@ -52,6 +53,22 @@ Pose side_pose(const IslandView& v, const Side& s, const IslandState& st) {
   if (s.kind == Side::Member) return pose_of(st[s.index]);
   if (s.kind == Side::Fixed) return pose_of((*v.bodies)[s.index].state);
   return {};
+}
+
+// The slip of a contact at state s: the relative velocity of its two surface points (b minus
+// a) off the normal.
+Vec3 contact_slip(const IslandView& v, const IslandContact& c, const IslandState& s) {
+  const IslandPair& p = v.island->pairs[c.pair];
+  const ContactFrame f = contact_frame(v, c, s);
+  auto point_velocity = [&](const Side& side, const Vec3& r) -> Vec3 {
+    if (side.kind != Side::Member) return Vec3::Zero();
+    const RigidBody& b = v.member(side.index);
+    const Mat3& R = s[side.index].R;
+    const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * s[side.index].L;
+    return s[side.index].P * b.inverse_mass() + w.cross(r);
+  };
+  const Vec3 slip = point_velocity(p.b, f.rb) - point_velocity(p.a, f.ra);
+  return slip - f.n * f.n.dot(slip);
 }
 
 // Mid-step states carry unnormalised quaternions: collision geometry wants a rotation.
@@ -341,18 +358,7 @@ void World::advance_island(const Island& island, double h) {
       const IslandPair& p = island.pairs[c.pair];
       if (p.friction <= 0.0) continue;
       const double dv = def_.gravity.norm() * remaining;
-      const IslandState one = state;
-      // The slip of the contact's surface points: their relative velocity off the normal.
-      const ContactFrame f = contact_frame(view, c, one);
-      auto point_velocity = [&](const Side& s, const Vec3& r) -> Vec3 {
-        if (s.kind != Side::Member) return Vec3::Zero();
-        const RigidBody& b = view.member(s.index);
-        const Mat3& R = one[s.index].R;
-        const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * one[s.index].L;
-        return one[s.index].P * b.inverse_mass() + w.cross(r);
-      };
-      Vec3 slip = point_velocity(p.b, f.rb) - point_velocity(p.a, f.ra);
-      slip -= f.n * f.n.dot(slip);
+      const Vec3 slip = contact_slip(view, c, state);
       c.sliding = slip.norm() > 2.0 * p.friction * dv;
     }
     const IslandDynamics dynamics(view, &held, &active, &evaluations_, &solve_failed);
@@ -381,17 +387,7 @@ void World::advance_island(const Island& island, double h) {
       if (!sticking.empty() && !apply_island_friction(view, sticking, impulse, trial)) {
         bool changed = false;
         for (std::size_t i : which) {
-          const ContactFrame f = contact_frame(view, held[i], end);
-          const IslandPair& p = island.pairs[held[i].pair];
-          auto velocity = [&](const Side& side, const Vec3& r) -> Vec3 {
-            if (side.kind != Side::Member) return Vec3::Zero();
-            const RigidBody& b = view.member(side.index);
-            const Mat3& R = end[side.index].R;
-            const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * end[side.index].L;
-            return end[side.index].P * b.inverse_mass() + w.cross(r);
-          };
-          Vec3 slip = velocity(p.b, f.rb) - velocity(p.a, f.ra);
-          slip -= f.n * f.n.dot(slip);
+          const Vec3 slip = contact_slip(view, held[i], end);
           if (!(slip.norm() > 0.0)) continue;
           held[i].sliding = true;
           held[i].slip_direction = slip.normalized();
@@ -514,25 +510,10 @@ void World::advance_island(const Island& island, double h) {
         lo_info.controller = controllers_[first];
         double toi = INFINITY;
         for (std::size_t w : crossed) toi = std::min(toi, pair_tol[watched[w]].toi_time_s);
-        int side = 0, iter = 0;
         const double noise = 32.0 * std::numeric_limits<double>::epsilon() * noise_scale;
-        for (; iter < 200 && hi - lo > toi; ++iter) {
-          double t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-          if (iter % 4 == 3 || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
-          StepInfo info;
-          const IslandState s = advanced(t, &info);
-          const double g = gap_at(s);
-          if (g >= -noise) {
-            lo = t, g_lo = g, at_lo = s, lo_info = info;
-            if (side == -1) g_hi *= 0.5;
-            side = -1;
-          } else {
-            hi = t, g_hi = g;
-            if (side == +1) g_lo *= 0.5;
-            side = +1;
-          }
-        }
-        if (iter == 200)
+        const bool located =
+            locate_impact(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info, advanced, gap_at);
+        if (!located)
           if (!diagnostics_.recur("contact_tolerance_missed"))
             diagnostics_.warn("contact_tolerance_missed", time_ + (h - remaining),
                               "the time of an impact between bodies could not be located to " +

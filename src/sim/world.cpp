@@ -11,6 +11,7 @@
 #include "dynamics.hpp"
 #include "floor_contact.hpp"
 #include "integrators.hpp"
+#include "time_of_impact.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
@@ -448,26 +449,10 @@ void World::advance_body(std::size_t index, double h) {
       // located where it really returns, to within the same round-off of its position.
       const double noise = 32.0 * std::numeric_limits<double>::epsilon() *
                            (std::abs(floor_y) + std::abs(start.x.y()) + tol.length_m);
-      int side = 0;
-      int iter = 0;
-      for (; iter < 200 && hi - lo > tol.toi_time_s; ++iter) {
-        double t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-        // Bisect every few iterations so a stubborn (curved) gap still shrinks the bracket.
-        if (iter % 4 == 3 || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
-        StepInfo info;
-        const BodyState s = advanced(t, &info);
-        const double g = min_gap(b, s, floor_y, crossing);
-        if (g >= -noise) {
-          lo = t, g_lo = g, at_lo = s, lo_info = info;
-          if (side == -1) g_hi *= 0.5;
-          side = -1;
-        } else {
-          hi = t, g_hi = g;
-          if (side == +1) g_lo *= 0.5;
-          side = +1;
-        }
-      }
-      if (iter == 200)
+      const bool located = locate_impact(
+          lo, hi, g_lo, g_hi, tol.toi_time_s, noise, at_lo, lo_info, advanced,
+          [&](const BodyState& s) { return min_gap(b, s, floor_y, crossing); });
+      if (!located)
         if (!diagnostics_.recur("contact_tolerance_missed"))
           diagnostics_.warn("contact_tolerance_missed", time_ + (h - remaining),
                             "the time of an impact of body \"" + b.name() +

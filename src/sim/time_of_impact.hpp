@@ -1,0 +1,40 @@
+#pragma once
+// Locating an impact in time: the Illinois variant of regula falsi on a gap function, from a
+// bracket [lo, hi] with gap(lo) >= 0 > gap(hi), integrating from the stretch's start with the
+// step's own integrator at every trial time. Used by the single-body step (a vertex against
+// the floor) and the island step (a pair of bodies), which differ only in what they integrate
+// and which gap they watch.
+
+namespace tumble {
+
+/// Where the search ended: `lo` (the latest time found not yet across, with its state and step
+/// information in `at_lo` and `lo_info`), and whether the bracket shrank to `width` within 200
+/// iterations (false: the caller reports a contact tolerance missed).
+/// `advance(t, info)` integrates from the start to t; `gap(state)` is the watched gap there. A
+/// gap within `noise` below zero counts as not yet across (round-off of the positions).
+template <class State, class Info, class Advance, class Gap>
+bool locate_impact(double& lo, double hi, double g_lo, double g_hi, double width, double noise,
+                   State& at_lo, Info& lo_info, const Advance& advance, const Gap& gap) {
+  int side = 0;
+  int iter = 0;
+  for (; iter < 200 && hi - lo > width; ++iter) {
+    double t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+    // Bisect every few iterations so a stubborn (curved) gap still shrinks the bracket.
+    if (iter % 4 == 3 || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
+    Info info;
+    const State s = advance(t, &info);
+    const double g = gap(s);
+    if (g >= -noise) {
+      lo = t, g_lo = g, at_lo = s, lo_info = info;
+      if (side == -1) g_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = t, g_hi = g;
+      if (side == +1) g_lo *= 0.5;
+      side = +1;
+    }
+  }
+  return iter < 200;
+}
+
+}  // namespace tumble
