@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tumble/diagnostics.hpp"
+#include "tumble/error.hpp"
 #include "tumble/scene.hpp"
 
 namespace tumble {
@@ -29,6 +30,14 @@ void install_interrupt_handlers();
 bool interrupted();
 /// Throws Interrupted once a signal arrived; the loops call it once per frame or sample.
 void throw_if_interrupted();
+
+/// A user's mistake on the command line: tumble::Error (BadInput, exit 2).
+[[noreturn]] inline void bad(const std::string& message) {
+  throw Error(ErrorKind::BadInput, message);
+}
+
+/// More steps than this is a typo (dt in ms?), not a run anyone waits for (--dt, study's --dts).
+inline constexpr double kMaxSteps = 1e9;
 
 struct CommonOptions {
   std::string scene_path;  // empty: the built-in default scene

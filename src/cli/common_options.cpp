@@ -8,16 +8,6 @@
 #include "tumble/trajectory_writer.hpp"
 
 namespace tumble::cli {
-namespace {
-
-[[noreturn]] void bad(const std::string& message) {
-  throw Error(ErrorKind::BadInput, message);
-}
-
-// More steps than this is a typo (dt in ms?), not a run anyone waits for.
-constexpr double kMaxSteps = 1e9;
-
-}  // namespace
 
 CLI::Validator non_empty() {
   return CLI::Validator(

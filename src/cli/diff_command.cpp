@@ -24,10 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void bad(const std::string& message) {
-  throw Error(ErrorKind::BadInput, message);
-}
-
 std::string quoted(const fs::path& p) {
   return "\"" + p.string() + "\"";
 }
@@ -64,11 +60,6 @@ const char* kind_name(InputKind kind) {
       return "a video";
   }
   return "";
-}
-
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code ec;
-  return fs::equivalent(a, b, ec) && !ec;
 }
 
 // The PNG files directly in `dir` (not in sub-folders), by file name.

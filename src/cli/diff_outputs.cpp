@@ -8,14 +8,15 @@
 #include "tumble/png.hpp"
 
 namespace tumble::cli {
+
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ec;
+  return std::filesystem::equivalent(a, b, ec) && !ec;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
-
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code ec;
-  return fs::equivalent(a, b, ec) && !ec;
-}
 
 // `file` is an input, or one of the PNGs a folder input holds.
 bool is_compared(const fs::path& file, const fs::path& input) {

@@ -16,6 +16,9 @@
 
 namespace tumble::cli {
 
+/// `a` and `b` name the same file or folder (false when either does not exist).
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
 class DiffOutputs {
  public:
   /// Checks --report and --junit before anything is compared (tumble::Error, BadInput: a

@@ -27,10 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void bad(const std::string& message) {
-  throw Error(ErrorKind::BadInput, message);
-}
-
 // More poses than this cannot be told apart in one picture; a typo is likelier.
 constexpr int kMaxStrobePoses = 1000;
 

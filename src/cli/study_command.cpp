@@ -18,12 +18,6 @@
 namespace tumble::cli {
 namespace {
 
-[[noreturn]] void bad(const std::string& message) {
-  throw Error(ErrorKind::BadInput, message);
-}
-
-// More steps than this is a typo (dt in ms?), as for --dt.
-constexpr double kMaxSteps = 1e9;
 constexpr int kMaxJobs = 1024;
 
 // The comma-separated items of `list`, spaces around them dropped; an empty item is an error.

@@ -11,6 +11,7 @@
 #include <map>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "tumble/atomic_file.hpp"
 #include "tumble/egl_context.hpp"
 #include "tumble/job_folder.hpp"
@@ -173,10 +174,6 @@ int collect(const Plan& plan, const std::vector<Job>& jobs, const fs::path& out,
     std::fprintf(stderr, "tumble: error: failed jobs (see their error.txt): %s\n",
                  job_numbers(failed).c_str());
   return missing.empty() && failed.empty() ? 0 : 1;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace

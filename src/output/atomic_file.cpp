@@ -4,16 +4,13 @@
 #include <cstring>
 #include <system_error>
 
+#include "cannot_write.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
 namespace {
 
 namespace fs = std::filesystem;
-
-[[noreturn]] void fail(const fs::path& path, const std::string& why) {
-  throw Error(ErrorKind::Environment, "cannot write \"" + path.string() + "\": " + why);
-}
 
 // A regular target is staged beside what it names, so that the rename never crosses file
 // systems; a device or FIFO gets its bytes by copying, so the temporary folder serves (the
@@ -43,7 +40,7 @@ void StagedFile::commit() {
 
 AtomicFile::AtomicFile(fs::path final_path) : staged_(std::move(final_path)) {
   out_.open(staged_.temporary_path(), std::ios::binary | std::ios::trunc);
-  if (!out_) fail(staged_.path(), std::strerror(errno));
+  if (!out_) cannot_write(staged_.path(), std::strerror(errno));
 }
 
 AtomicFile::~AtomicFile() {
@@ -54,7 +51,7 @@ void AtomicFile::commit() {
   out_.flush();
   const bool ok = static_cast<bool>(out_);
   out_.close();
-  if (!ok || out_.fail()) fail(staged_.path(), "write failed (disk full?)");
+  if (!ok || out_.fail()) cannot_write(staged_.path(), "write failed (disk full?)");
   staged_.commit();
 }
 

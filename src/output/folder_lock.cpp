@@ -14,7 +14,7 @@
 namespace tumble {
 namespace {
 
-[[noreturn]] void fail(const std::filesystem::path& dir, const std::string& why) {
+[[noreturn]] void cannot_lock(const std::filesystem::path& dir, const std::string& why) {
   throw Error(ErrorKind::Environment,
               "cannot lock the output folder \"" + dir.string() + "\": " + why);
 }
@@ -37,13 +37,13 @@ FolderLock::FolderLock(const std::filesystem::path& dir) : path_(dir / kFileName
   constexpr int kAttempts = 100;
   for (int attempt = 0; attempt < kAttempts; ++attempt) {
     const int fd = open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
-    if (fd < 0) fail(dir, std::generic_category().message(errno));
+    if (fd < 0) cannot_lock(dir, std::generic_category().message(errno));
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int error = errno;
       const std::string pid = error == EWOULDBLOCK ? holder_pid(fd) : "";
       close(fd);
       if (error == EINTR) continue;
-      if (error != EWOULDBLOCK) fail(dir, std::generic_category().message(error));
+      if (error != EWOULDBLOCK) cannot_lock(dir, std::generic_category().message(error));
       throw Error(ErrorKind::Environment,
                   "the output folder \"" + dir.string() + "\" is in use: another tumble run" +
                       (pid.empty() ? "" : " (process " + pid + ")") +
@@ -63,7 +63,7 @@ FolderLock::FolderLock(const std::filesystem::path& dir) : path_(dir / kFileName
     }
     close(fd);
   }
-  fail(dir, "the lock file keeps changing");
+  cannot_lock(dir, "the lock file keeps changing");
 }
 
 FolderLock::~FolderLock() {

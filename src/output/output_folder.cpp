@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <system_error>
 
+#include "cannot_write.hpp"
 #include "tumble/atomic_file.hpp"
 #include "tumble/output_target.hpp"
 
@@ -16,10 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::string_view kStagingStem = "tumble-run";
-
-[[noreturn]] void fail(const fs::path& path, const std::string& why) {
-  throw Error(ErrorKind::Environment, "cannot write \"" + path.string() + "\": " + why);
-}
 
 bool is_temporary_name(const std::string& name) {
   return name.size() > 9 && name.front() == '.' && name.ends_with(".partial");
@@ -72,7 +69,7 @@ StagedOutput OutputFolder::folder(const std::string& name,
   check_folder(entries_.back());
   std::error_code ec;
   fs::create_directory(staging_ / name, ec);
-  if (ec) fail(dir_ / name, ec.message());
+  if (ec) cannot_write(dir_ / name, ec.message());
   return {dir_ / name, staging_ / name};
 }
 
@@ -81,42 +78,42 @@ void OutputFolder::check_folder(const Entry& entry) const {
   struct stat st {};
   if (lstat(target.c_str(), &st) != 0) {
     if (errno == ENOENT) return;
-    fail(target, std::generic_category().message(errno));
+    cannot_write(target, std::generic_category().message(errno));
   }
   if (S_ISLNK(st.st_mode))
-    fail(target, "it is a symbolic link; " + entry.name +
+    cannot_write(target, "it is a symbolic link; " + entry.name +
                      "/ is replaced as a whole at the end of a run, so it must be a folder");
-  if (!S_ISDIR(st.st_mode)) fail(target, "it is not a folder");
+  if (!S_ISDIR(st.st_mode)) cannot_write(target, "it is not a folder");
   std::error_code ec;
   for (fs::directory_iterator it(target, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     const bool own =
         is_temporary_name(name) || (entry.is_own(name) && it->is_regular_file(ec) && !ec);
     if (!own)
-      fail(target, "it holds \"" + name + "\", which tumble did not write; " + entry.name +
+      cannot_write(target, "it holds \"" + name + "\", which tumble did not write; " + entry.name +
                        "/ is replaced as a whole at the end of a run, so move that away or "
                        "choose another --out");
   }
-  if (ec) fail(target, ec.message());
+  if (ec) cannot_write(target, ec.message());
 }
 
 void OutputFolder::place_folder(const Entry& entry) const {
   const fs::path target = dir_ / entry.name, staged = staging_ / entry.name;
   check_folder(entry);  // again: nothing that appeared since the start is deleted either
   if (std::rename(staged.c_str(), target.c_str()) == 0) return;  // there was none
-  if (errno != EEXIST && errno != ENOTEMPTY) fail(target, std::generic_category().message(errno));
+  if (errno != EEXIST && errno != ENOTEMPTY) cannot_write(target, std::generic_category().message(errno));
   // One step: the new folder takes the old one's name, the old one the staged name. A reader
   // sees the old frames or the new, never a mix and never none.
   if (renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) != 0) {
-    if (errno != EINVAL && errno != ENOSYS) fail(target, std::generic_category().message(errno));
+    if (errno != EINVAL && errno != ENOSYS) cannot_write(target, std::generic_category().message(errno));
     // A file system without the exchange: the old folder aside, the new one in, the old removed.
     const fs::path old = make_unique_temporary_folder(staging_, entry.name + "-old");
     if (std::rename(target.c_str(), old.c_str()) != 0)
-      fail(target, std::generic_category().message(errno));
+      cannot_write(target, std::generic_category().message(errno));
     if (std::rename(staged.c_str(), target.c_str()) != 0) {
       const int error = errno;
       std::rename(old.c_str(), target.c_str());
-      fail(target, std::generic_category().message(error));
+      cannot_write(target, std::generic_category().message(error));
     }
     return;  // the old one goes with the staging folder
   }

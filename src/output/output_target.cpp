@@ -14,16 +14,13 @@
 #include <string>
 #include <system_error>
 
+#include "cannot_write.hpp"
 #include "tumble/error.hpp"
 
 namespace tumble {
 namespace {
 
 namespace fs = std::filesystem;
-
-[[noreturn]] void fail(const fs::path& path, const std::string& why) {
-  throw Error(ErrorKind::Environment, "cannot write \"" + path.string() + "\": " + why);
-}
 
 std::string errno_text(int code) {
   return std::generic_category().message(code);
@@ -44,10 +41,10 @@ fs::path follow_links(const fs::path& path) {
     if (lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return p;
     std::error_code ec;
     const fs::path to = fs::read_symlink(p, ec);
-    if (ec) fail(path, ec.message());
+    if (ec) cannot_write(path, ec.message());
     p = to.is_absolute() ? to : folder_of(p) / to;
   }
-  fail(path, errno_text(ELOOP));
+  cannot_write(path, errno_text(ELOOP));
 }
 
 // Six characters no other process or thread picks at the same time, with overwhelming
@@ -83,7 +80,7 @@ fs::path make_unique(const fs::path& folder, std::string_view stem, Make make) {
     if (make(p)) return p;
     last_error = errno;
   }
-  fail(folder / stem, errno_text(last_error));
+  cannot_write(folder / stem, errno_text(last_error));
 }
 
 // Writes every byte of `from` into the open descriptor `fd`; false with errno set on failure.
@@ -134,7 +131,7 @@ void write_through(const fs::path& finished, const OutputTarget& target) {
     sigtimedwait(&pipe_only, nullptr, &no_wait);
   }
   pthread_sigmask(SIG_SETMASK, &previous, nullptr);
-  if (!ok) fail(target.path, errno_text(error));
+  if (!ok) cannot_write(target.path, errno_text(error));
   std::error_code ignored;
   fs::remove(finished, ignored);
 }
@@ -154,10 +151,10 @@ OutputTarget output_target(const fs::path& path) {
       t.kind = OutputTarget::Kind::WriteThrough;
       return t;
     }
-    if (S_ISDIR(st.st_mode)) fail(path, "it is a folder");
-    if (!S_ISREG(st.st_mode)) fail(path, "it is neither a file, a character device nor a FIFO");
+    if (S_ISDIR(st.st_mode)) cannot_write(path, "it is a folder");
+    if (!S_ISREG(st.st_mode)) cannot_write(path, "it is neither a file, a character device nor a FIFO");
   } else if (errno != ENOENT && errno != ENOTDIR) {
-    fail(path, errno_text(errno));
+    cannot_write(path, errno_text(errno));
   }
   // A regular file, or nothing yet (a dangling link: what it names): replaced by a rename over
   // what the links name, so the links stay, and beside it, so the rename stays on one file system.
@@ -165,10 +162,10 @@ OutputTarget output_target(const fs::path& path) {
   t.kind = OutputTarget::Kind::Replace;
   const fs::path folder = folder_of(t.resolved);
   if (stat(folder.c_str(), &st) != 0)
-    fail(path, errno == ENOENT ? "the folder \"" + folder.string() +
+    cannot_write(path, errno == ENOENT ? "the folder \"" + folder.string() +
                                      "\" does not exist (tumble creates only --out folders)"
                                : errno_text(errno));
-  if (!S_ISDIR(st.st_mode)) fail(path, "\"" + folder.string() + "\" is not a folder");
+  if (!S_ISDIR(st.st_mode)) cannot_write(path, "\"" + folder.string() + "\" is not a folder");
   return t;
 }
 
@@ -178,7 +175,7 @@ void place_output(const fs::path& finished, const OutputTarget& target) {
     return;
   }
   if (std::rename(finished.c_str(), target.resolved.c_str()) == 0) return;
-  if (errno != EXDEV) fail(target.path, errno_text(errno));
+  if (errno != EXDEV) cannot_write(target.path, errno_text(errno));
   // A link into another file system: a copy beside what it names, then the same atomic rename.
   const fs::path copy =
       make_unique_temporary_file(folder_of(target.resolved), target.resolved.filename().string());
@@ -189,7 +186,7 @@ void place_output(const fs::path& finished, const OutputTarget& target) {
   if (ec) {
     std::error_code ignored;
     fs::remove(copy, ignored);
-    fail(target.path, ec.message());
+    cannot_write(target.path, ec.message());
   }
   fs::remove(finished, ec);
 }

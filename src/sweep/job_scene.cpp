@@ -10,10 +10,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(SourceLocation where, std::string message) {
-  throw Error(ErrorKind::BadInput, std::move(message), std::move(where));
-}
-
 // The path's segments below the scene's root table: ("floor", "restitution") or, for a body,
 // the body's table and ("orientation", "degrees").
 struct Target {

@@ -22,10 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(SourceLocation where, std::string message) {
-  throw Error(ErrorKind::BadInput, std::move(message), std::move(where));
-}
-
 std::string in_quotes(std::string_view s) {
   return '"' + std::string(s) + '"';
 }

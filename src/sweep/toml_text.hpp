@@ -8,6 +8,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "tumble/error.hpp"
 
@@ -32,6 +33,10 @@ inline SourceLocation location(const toml::source_position& p, const std::string
 }
 inline SourceLocation location(const toml::node& node, const std::string& file) {
   return location(node.source().begin, file);
+}
+/// A mistake in the plan or a job's scene at `where`: tumble::Error (BadInput, exit 2).
+[[noreturn]] inline void fail(SourceLocation where, std::string message) {
+  throw Error(ErrorKind::BadInput, std::move(message), std::move(where));
 }
 
 }  // namespace tumble::sweep
