@@ -53,8 +53,8 @@ GLuint link_program(const char* vert_name, const char* frag_name) {
 
 namespace {
 
-// Interleaved position + normal, indexed triangles.
-Mesh upload(const std::vector<float>& vertices, const std::vector<unsigned>& indices) {
+// A vertex array with its vertex and index buffers filled, left bound for the attributes.
+Mesh upload_buffers(const std::vector<float>& vertices, const std::vector<unsigned>& indices) {
   Mesh m;
   glGenVertexArrays(1, &m.vao);
   glGenBuffers(1, &m.vbo);
@@ -66,30 +66,26 @@ Mesh upload(const std::vector<float>& vertices, const std::vector<unsigned>& ind
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(unsigned)),
                indices.data(), GL_STATIC_DRAW);
+  m.count = static_cast<GLsizei>(indices.size());
+  return m;
+}
+
+// Interleaved position + normal, indexed triangles.
+Mesh upload(const std::vector<float>& vertices, const std::vector<unsigned>& indices) {
+  Mesh m = upload_buffers(vertices, indices);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                         reinterpret_cast<void*>(3 * sizeof(float)));
   glBindVertexArray(0);
-  m.count = static_cast<GLsizei>(indices.size());
   return m;
 }
 
 // Interleaved position, normal, linear albedo, texture coordinates (11 floats), indexed.
 Mesh upload_with_materials(const std::vector<float>& vertices,
                            const std::vector<unsigned>& indices) {
-  Mesh m;
-  glGenVertexArrays(1, &m.vao);
-  glGenBuffers(1, &m.vbo);
-  glGenBuffers(1, &m.ebo);
-  glBindVertexArray(m.vao);
-  glBindBuffer(GL_ARRAY_BUFFER, m.vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)),
-               vertices.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ebo);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(unsigned)),
-               indices.data(), GL_STATIC_DRAW);
+  Mesh m = upload_buffers(vertices, indices);
   constexpr GLsizei stride = 11 * sizeof(float);
   const GLint sizes[4] = {3, 3, 3, 2};
   std::size_t offset = 0;
@@ -100,7 +96,6 @@ Mesh upload_with_materials(const std::vector<float>& vertices,
     offset += std::size_t(sizes[a]);
   }
   glBindVertexArray(0);
-  m.count = static_cast<GLsizei>(indices.size());
   return m;
 }
 
