@@ -10,13 +10,13 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <numeric>
 #include <string>
 
 #include "collide.hpp"
 #include "island.hpp"
+#include "number_text.hpp"
 #include "time_of_impact.hpp"
 #include "tumble/world.hpp"
 
@@ -24,12 +24,6 @@ namespace tumble {
 namespace {
 
 using Tol = ContactTolerances;
-
-std::string fmt(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
 
 struct Bounds {
   Vec3 lo, hi;

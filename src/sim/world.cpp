@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -11,6 +10,7 @@
 #include "dynamics.hpp"
 #include "floor_contact.hpp"
 #include "integrators.hpp"
+#include "number_text.hpp"
 #include "time_of_impact.hpp"
 #include "tumble/error.hpp"
 
@@ -21,12 +21,6 @@ using Tol = ContactTolerances;
 
 // Standard gravity: the speed scale of tolerances when a scene has none, and the 1 m reference.
 constexpr double kStandardGravity = 9.81;
-
-std::string fmt(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, format, value);
-  return text;
-}
 
 // Largest dt·|ω| (radians turned per step) each fixed-step integrator follows faithfully: the
 // orientation error per step grows as (dt·|ω|)^(order+1), so past these the motion in a clip is

@@ -8,9 +8,8 @@
 namespace tumble::study {
 namespace {
 
-std::string pad(std::string s, std::size_t width) {
-  if (s.size() < width) s.append(width - s.size(), ' ');
-  return s;
+std::string pad(const std::string& s, std::size_t width) {
+  return s.size() < width ? s + std::string(width - s.size(), ' ') : s;
 }
 
 std::string pad_left(const std::string& s, std::size_t width) {
