@@ -116,6 +116,52 @@ TEST(Friction, SlidesDownARampSteeperThanAtanMuAtGTimesSinMinusMuCos) {
   EXPECT_EQ(w.contact_stats().impacts, 0);
 }
 
+// A ball of radius r launched sliding at v0 without spin, on the floor (`on_table` false) or on
+// a fixed box, both with friction mu. Kinetic friction mu m g decelerates its centre at mu g
+// and spins it up at (mu m g r) / (2/5 m r²); the contact point stops slipping when
+// v0 − mu g t = (5/2) mu g t, at t* = 2 v0 / (7 mu g), and from then on it rolls at 5/7 v0
+// (static friction holds it with no force: a ball rolling on a level plane needs none).
+void expect_rolls_at_five_sevenths(bool on_table) {
+  const double mu = 0.3, v0 = 2.0, r = 0.1, base = on_table ? 0.2 : 0.0;
+  WorldDef def = ground();
+  def.floor->friction = mu;
+  if (on_table) {
+    BodyDef table = test::fixed_box_def(Vec3(4, 0.2, 1), Vec3(0, 0.1, 0));
+    table.friction = mu;
+    def.bodies.push_back(table);
+  }
+  BodyDef ball = test::sphere_def(r, 1.0, Vec3(0, base + r, 0));
+  ball.velocity = Vec3(v0, 0, 0);
+  ball.restitution = 0.0;
+  ball.friction = mu;
+  def.bodies.push_back(ball);
+  World w(def);
+  const std::size_t k = def.bodies.size() - 1;
+  const double t_roll = 2.0 * v0 / (7.0 * mu * g);  // 0.194 s
+  // Sliding: the centre decelerates at mu g. The step's rk4 is exact for a constant force, so
+  // the only error is where the stretch ends (none before t*): 1e-9 v0.
+  while (w.time() < 0.1 - 1e-12) w.step();
+  EXPECT_NEAR(w.bodies()[k].velocity().x(), v0 - mu * g * w.time(), 1e-9 * v0);
+  while (w.time() < 0.5 - 1e-12) w.step();
+  const RigidBody& b = w.bodies()[k];
+  // Rolling: 5/7 v0, its spin matching (v = −ω_z r), and the distance of sliding to t* then
+  // rolling after it, to within the one step over which the slip stops (v0 dt).
+  EXPECT_NEAR(b.velocity().x(), 5.0 / 7.0 * v0, 1e-9 * v0);
+  EXPECT_NEAR(b.angular_velocity().z() * r, -5.0 / 7.0 * v0, 1e-9 * v0);
+  const double slid = v0 * t_roll - 0.5 * mu * g * t_roll * t_roll;
+  EXPECT_NEAR(b.state.x.x(), slid + 5.0 / 7.0 * v0 * (w.time() - t_roll), v0 * def.dt_s);
+  EXPECT_NEAR(b.state.x.y(), base + r, 1e-9 * r);  // it neither sinks nor hops
+  EXPECT_LE(w.contact_stats().max_energy_gain_J, 1e-12);
+}
+
+TEST(Friction, ASphereLaunchedSlidingOnTheFloorEndsRollingAtFiveSevenths) {
+  expect_rolls_at_five_sevenths(false);
+}
+
+TEST(Friction, ASphereLaunchedSlidingOnAFixedBoxEndsRollingAtFiveSevenths) {
+  expect_rolls_at_five_sevenths(true);
+}
+
 TEST(Stack, HeavyBoxOnALightOneDoesNotSink) {
   // 1000 kg set on 1 kg on the floor: held by exact contact forces, the light box is not pressed
   // in. Every box within the touch tolerance (1e-6 of the size) of where it started over 10 s.
