@@ -1,8 +1,10 @@
 // The example scenes of bodies that meet (assets/scenes/dice.toml, stack.toml,
-// newtons_cradle.toml) simulated through the CLI: what a user of each sees, in numbers.
+// newtons_cradle.toml, ramp_into_boxes.toml) simulated through the CLI: what a user of each
+// sees, in numbers.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "run_tumble.hpp"
@@ -86,6 +88,62 @@ TEST(ContactScenes, NewtonsCradlePassesTheStrikeToTheLastBall) {
     else
       EXPECT_LT(std::abs(vx), 5e-7) << s.trajectory.text(row, BODY);
   }
+}
+
+TEST(ContactScenes, TheBallRollsDownTheRampAndKnocksTheBoxesOnInTurn) {
+  const TestDir dir;
+  const Simulated a = simulate("ramp_into_boxes.toml", dir, "a");
+  const Csv& c = a.trajectory;
+  // On the ramp (to 0.85 s, before its end): rolling without slipping, so the centre's speed is
+  // 5/7 g sin 20° t and the contact point is at rest (v = −ω_z r). Static friction holds it with
+  // no impulse, and rk4 is exact for the constant acceleration: the error is round-off over
+  // ~850 steps (4e-14 m/s seen), bounded here at 1e-12 m/s.
+  const double pi = std::acos(-1.0), accel = 5.0 / 7.0 * 9.81 * std::sin(20.0 * pi / 180.0);
+  int on_ramp = 0;
+  for (std::size_t row = 0; row < c.rows.size(); ++row) {
+    const double t = c.value(row, T);
+    if (c.text(row, BODY) != "ball" || t > 0.85) continue;
+    EXPECT_NEAR(std::hypot(c.value(row, VX), c.value(row, VY)), accel * t, 1e-12) << t;
+    EXPECT_NEAR(c.value(row, WZ) * 0.05, -std::hypot(c.value(row, VX), c.value(row, VY)), 1e-12);
+    ++on_ramp;
+  }
+  EXPECT_EQ(on_ramp, 52);  // the samples at 0, 1/60, …, 51/60 s
+  // The strike passes along the row in order: ball → box0 → box1 → box2, each pair meeting once
+  // it is struck, and none of them deeper than the finer touch tolerance (1e-6 of the 5 cm
+  // ball's radius).
+  std::map<std::string, double> first;
+  for (const nlohmann::json& p : a.report["physics"]["contact_pairs"]) {
+    const std::string pair =
+        p["bodies"][0].get<std::string>() + "-" + p["bodies"][1].get<std::string>();
+    if (!p["first_impact_t_s"].is_null()) first[pair] = p["first_impact_t_s"].get<double>();
+    EXPECT_LT(p["deepest_penetration_m"].get<double>(), 5e-8) << p.dump();
+  }
+  ASSERT_TRUE(first.count("ball-box0") && first.count("box0-box1") && first.count("box1-box2"));
+  EXPECT_LT(first["ball-box0"], first["box0-box1"]);
+  EXPECT_LT(first["box0-box1"], first["box1-box2"]);
+  // The ball reaches the row with its 2 m/s after ~1.03 s: the time the ramp and the floor give.
+  EXPECT_NEAR(first["ball-box0"], 1.03, 0.01);
+  // Energy is never gained at an event beyond the potential energy of the touch tolerance
+  // (1.8 kg · g · 5e-8 m ≈ 1e-6 J; 6e-12 J seen), and friction has taken most of it by the end.
+  const nlohmann::json& physics = a.report["physics"];
+  EXPECT_LT(physics["max_contact_energy_gain_J"].get<double>(), 1e-9);
+  EXPECT_LT(physics["energy_end_J"].get<double>(), physics["energy_start_J"].get<double>());
+  // At the end the boxes stand still on a face, in their order, each clear of the next; the
+  // ball has bounced back off box0 (it rolls slowly away from the row).
+  const std::size_t n = c.rows.size();
+  std::map<std::string, std::size_t> last;
+  for (std::size_t row = n - 5; row < n; ++row) last[c.text(row, BODY)] = row;
+  for (const char* box : {"box0", "box1", "box2"}) {
+    for (int col : {VX, VY, VZ, WX, WY, WZ}) EXPECT_EQ(c.value(last[box], col), 0.0) << box;
+    EXPECT_NEAR(c.value(last[box], Y), 0.05, 1e-6) << box;
+  }
+  EXPECT_GT(c.value(last["box1"], X) - c.value(last["box0"], X), 0.1 - 1e-9);
+  EXPECT_GT(c.value(last["box2"], X) - c.value(last["box1"], X), 0.1 - 1e-9);
+  EXPECT_LT(c.value(last["ball"], VX), 0.0);
+  EXPECT_LT(c.value(last["ball"], X) + 0.05, c.value(last["box0"], X) - 0.05);
+  // The same scene, the same bytes.
+  const Simulated b = simulate("ramp_into_boxes.toml", dir, "b");
+  EXPECT_EQ(a.bytes, b.bytes);
 }
 
 }  // namespace
