@@ -497,7 +497,10 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
       }
       Eigen::VectorXd j;
       std::vector<char> active;
-      solve_lcp_pivoting(As, rhs, j, active);
+      if (elastic)
+        solve_lcp_pivoting(As, rhs, j, active);
+      else
+        solve_lcp_dissipative(As, rhs, j, active);
       for (int r = 0; r < k; ++r) {
         impulses[set[r]] += j(r);
         apply(s, f, set[r], j(r) * f.frame[set[r]].n);
@@ -567,7 +570,7 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
   if (vn.minCoeff() < -eps) {
     Eigen::VectorXd j;
     std::vector<char> active;
-    solve_lcp_pivoting(A, vn, j, active, true);
+    solve_lcp_dissipative(A, vn, j, active, true);
     double e = inelastic ? 0.0 : 1.0;
     for (int i = 0; i < n; ++i)
       if (j(i) > 0.0 && vn(i) < -rest_speed)
@@ -580,7 +583,7 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
     }
     vn = speeds();
     if (vn.minCoeff() < -eps) {
-      solve_lcp_pivoting(A, vn, j, active, true);
+      solve_lcp_dissipative(A, vn, j, active, true);
       for (int i = 0; i < n; ++i) {
         impulses[i] += j(i);
         apply(s, f, i, j(i) * f.frame[i].n);
@@ -610,7 +613,7 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
       }
       Eigen::VectorXd j;
       std::vector<char> active;
-      solve_lcp_pivoting(As, rhs, j, active);
+      solve_lcp_dissipative(As, rhs, j, active);
       for (int r = 0; r < k; ++r) {
         impulses[set[r]] += j(r);
         apply(s, f, set[r], j(r) * f.frame[set[r]].n);

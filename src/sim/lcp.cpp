@@ -316,4 +316,28 @@ bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eige
   return false;
 }
 
+bool solve_lcp_dissipative(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+                           std::vector<char>& active, bool ridge_on_stall) {
+  // The energy change of impulses f; a complementary f makes it −½ fᵀA f.
+  auto dissipates = [&](const Eigen::VectorXd& x) {
+    const double work = b.dot(x);
+    return !(work + 0.5 * x.dot(A * x) > 1e-12 * std::abs(work));
+  };
+  const bool exact = solve_lcp_pivoting(A, b, f, active, ridge_on_stall);
+  if (dissipates(f)) return exact;
+  const std::size_t n = static_cast<std::size_t>(b.size());
+  // Then the same with the diagonal of 1e-10 of the largest one (see solve_lcp_pivoting): a
+  // definite matrix, whose LCP has one solution that Dantzig's method reaches; then Lemke's.
+  Eigen::MatrixXd ridged = A;
+  ridged.diagonal().array() += 1e-10 * std::max(A.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+  active.assign(n, 0);
+  if (pivot(ridged, b, f, active) && dissipates(f)) return true;
+  active.assign(n, 0);
+  if (lemke(A, b, f, active) && dissipates(f)) return true;
+  f = Eigen::VectorXd::Zero(b.size());
+  projected_gauss_seidel(A, b, f);
+  active.assign(n, 0);
+  return false;
+}
+
 }  // namespace tumble

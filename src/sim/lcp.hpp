@@ -32,4 +32,14 @@ LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b);
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                         std::vector<char>& active, bool ridge_on_stall = false);
 
+/// The same problem where f are impulses along contact normals and A their Delassus matrix (an
+/// inelastic impact): the kinetic energy then changes by b·f + ½ fᵀA f, which a complementary f
+/// makes −½ fᵀA f <= 0. Pivoting on dependent rows (four coplanar corners of a face) can end
+/// off complementarity and push where a contact leaves, gaining energy; such an answer is
+/// replaced by projected Gauss–Seidel from f = 0, each of whose steps minimises that energy
+/// along one impulse, so it only dissipates. Returns false when the answer is that fallback
+/// or `solve_lcp_pivoting`'s.
+bool solve_lcp_dissipative(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+                           std::vector<char>& active, bool ridge_on_stall = false);
+
 }  // namespace tumble
