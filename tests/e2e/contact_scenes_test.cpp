@@ -153,14 +153,12 @@ TEST(ContactScenes, TheBallRollsDownTheRampAndKnocksTheBoxesOnInTurn) {
 // (3.3 kg · g · 1e-7 m ≈ 3e-6 J; 3e-13 J seen), bounded here far below it, at 1e-8 J.
 TEST(ContactScenes, AFaceToFaceStrikeOnATippingBoxGainsNoEnergy) {
   const TestDir dir;
-  write_scene(dir.path(), "strike.toml", R"([simulation]
+  std::string scene = R"([simulation]
 duration = 1.3
 dt = 0.001
-
 [floor]
 restitution = 0.2
 friction = 0.0
-
 [[body]]
 name = "ramp"
 shape = "box"
@@ -169,7 +167,6 @@ size = [1.0, 0.04, 0.3]
 position = [0.0, 0.2, 0.0]
 orientation = { axis = [0.0, 0.0, 1.0], degrees = -20.0 }
 friction = 0.0
-
 [[body]]
 name = "ball"
 shape = "sphere"
@@ -178,34 +175,12 @@ mass = 0.3
 position = [-0.370729, 0.409427, 0.0]
 restitution = 0.8
 friction = 0.0
-
-[[body]]
-name = "box0"
-shape = "box"
-size = [0.1, 0.1, 0.1]
-mass = 1.0
-position = [0.900, 0.05, 0.0]
-restitution = 0.8
-friction = 0.0
-
-[[body]]
-name = "box1"
-shape = "box"
-size = [0.1, 0.1, 0.1]
-mass = 1.0
-position = [1.100, 0.05, 0.0]
-restitution = 0.8
-friction = 0.0
-
-[[body]]
-name = "box2"
-shape = "box"
-size = [0.1, 0.1, 0.1]
-mass = 1.0
-position = [1.300, 0.05, 0.0]
-restitution = 0.8
-friction = 0.0
-)");
+)";
+  for (int k = 0; k < 3; ++k)
+    scene += "[[body]]\nname = \"box" + std::to_string(k) +
+             "\"\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\nmass = 1.0\nposition = [" +
+             std::to_string(0.9 + 0.2 * k) + ", 0.05, 0.0]\nrestitution = 0.8\nfriction = 0.0\n";
+  write_scene(dir.path(), "strike.toml", scene);
   const RunResult r = run_tumble({"simulate", "strike.toml", "--out", "o", "--quiet"}, dir.path());
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   const nlohmann::json physics = read_json(dir / "o/run.json")["physics"];
