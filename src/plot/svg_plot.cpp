@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "axis_ticks.hpp"
+#include "tumble/markup_text.hpp"
 
 namespace tumble::plot {
 namespace {
@@ -63,34 +64,9 @@ std::string num(double v) {
   return s;
 }
 
-// Text for an element's content or a double-quoted attribute. Control characters other than
-// tab and newline are not allowed in XML 1.0 at all, so they are dropped.
-std::string escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) >= 0x20 || c == '\t' || c == '\n') out += c;
-    }
-  }
-  return out;
-}
+// Text for an element's content or a double-quoted attribute (one escape serves both: what
+// an attribute needs escaped is also valid as a reference in content).
+std::string escape(std::string_view text) { return escape_markup_attribute(text); }
 
 // Appends the parts in order, numbers through num(): put(out, "<circle cx=\"", x, "\"/>").
 void put_part(std::string& out, std::string_view text) {

@@ -41,15 +41,27 @@ struct PngFailure {
 // Warnings are recoverable (e.g. a bad ancillary chunk that libpng skips); stderr stays clean.
 void on_png_warning(png_structp, png_const_charp) {}
 
-// Owns a libpng write struct and its info struct.
-class PngWriteStructs {
+// Owns a libpng read or write struct and its info struct.
+enum class PngDirection { Read, Write };
+
+template <PngDirection direction>
+class PngStructs {
  public:
-  explicit PngWriteStructs(PngFailure* failure)
-      : png_(png_create_write_struct(PNG_LIBPNG_VER_STRING, failure, on_png_error, on_png_warning)),
+  explicit PngStructs(PngFailure* failure)
+      : png_(direction == PngDirection::Write
+                 ? png_create_write_struct(PNG_LIBPNG_VER_STRING, failure, on_png_error,
+                                           on_png_warning)
+                 : png_create_read_struct(PNG_LIBPNG_VER_STRING, failure, on_png_error,
+                                          on_png_warning)),
         info_(png_ ? png_create_info_struct(png_) : nullptr) {}
-  ~PngWriteStructs() { png_destroy_write_struct(&png_, &info_); }
-  PngWriteStructs(const PngWriteStructs&) = delete;
-  PngWriteStructs& operator=(const PngWriteStructs&) = delete;
+  ~PngStructs() {
+    if constexpr (direction == PngDirection::Write)
+      png_destroy_write_struct(&png_, &info_);
+    else
+      png_destroy_read_struct(&png_, &info_, nullptr);
+  }
+  PngStructs(const PngStructs&) = delete;
+  PngStructs& operator=(const PngStructs&) = delete;
 
   bool ok() const { return png_ && info_; }
   png_structp png() const { return png_; }
@@ -59,25 +71,8 @@ class PngWriteStructs {
   png_structp png_;
   png_infop info_;
 };
-
-// Owns a libpng read struct and its info struct.
-class PngReadStructs {
- public:
-  explicit PngReadStructs(PngFailure* failure)
-      : png_(png_create_read_struct(PNG_LIBPNG_VER_STRING, failure, on_png_error, on_png_warning)),
-        info_(png_ ? png_create_info_struct(png_) : nullptr) {}
-  ~PngReadStructs() { png_destroy_read_struct(&png_, &info_, nullptr); }
-  PngReadStructs(const PngReadStructs&) = delete;
-  PngReadStructs& operator=(const PngReadStructs&) = delete;
-
-  bool ok() const { return png_ && info_; }
-  png_structp png() const { return png_; }
-  png_infop info() const { return info_; }
-
- private:
-  png_structp png_;
-  png_infop info_;
-};
+using PngWriteStructs = PngStructs<PngDirection::Write>;
+using PngReadStructs = PngStructs<PngDirection::Read>;
 
 // ---- writing ----
 

@@ -115,7 +115,7 @@ TEST(SvgPlot, EscapesEveryPieceOfText) {
   const std::string svg = render_svg(f);
   EXPECT_EQ(svg.find("a<b&c"), std::string::npos);
   EXPECT_GE(count(svg, "a&lt;b&amp;c"), 3u);  // document title, figure title, legend entry
-  EXPECT_NE(svg.find("&quot;quoted&quot; &amp; &apos;single&apos;"), std::string::npos);
+  EXPECT_NE(svg.find("&quot;quoted&quot; &amp; &#39;single&#39;"), std::string::npos);
   EXPECT_NE(svg.find("x&lt;y"), std::string::npos);
   EXPECT_NE(svg.find("y&gt;x"), std::string::npos);
   EXPECT_NE(svg.find("m&amp;m"), std::string::npos);
