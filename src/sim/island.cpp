@@ -16,8 +16,8 @@ bool round_side(const RigidBody* b) {
 
 // Where a force along the contact acts on one side, and how its point moves.
 struct SideGeometry {
-  int member = -1;  // local index, -1 for a static side
-  Vec3 lever = Vec3::Zero();  // force lever from the centre of mass
+  int member = -1;                  // local index, -1 for a static side
+  Vec3 lever = Vec3::Zero();        // force lever from the centre of mass
   Vec3 point_lever = Vec3::Zero();  // lever of the constrained point (zero for a round side)
 };
 
@@ -397,9 +397,9 @@ struct IslandSystem {
   double scaled_error(const State& s, const ErrorSum& e, const Stepping&) const {
     double worst = 0.0;
     for (std::size_t m = 0; m < e.size(); ++m)
-      worst = std::max(worst, body_scaled_error(f.view().member(static_cast<int>(m)), rep(), s[m],
-                                                e[m].dx, e[m].dP, e[m].dL, e[m].dq, e[m].dR,
-                                                per_body[m]));
+      worst = std::max(worst,
+                       body_scaled_error(f.view().member(static_cast<int>(m)), rep(), s[m], e[m].dx,
+                                         e[m].dP, e[m].dL, e[m].dq, e[m].dR, per_body[m]));
     return worst;
   }
   void finish(State& s, StepInfo& info) const {
@@ -438,6 +438,29 @@ double island_kinetic_energy(const IslandView& v, const IslandState& s) {
   return e;
 }
 
+namespace {
+
+// The impulses along the normals, least squares with minimum norm over dependent points, that
+// bring the normal speed of each of `points` (not empty) to zero: a projection in the kinetic
+// metric, so it never gains energy.
+void stop_points(const Eigen::MatrixXd& A, const Frames& f, const std::vector<int>& points,
+                 const Eigen::VectorXd& vn, IslandState& s, std::vector<double>& impulses) {
+  const int q = static_cast<int>(points.size());
+  Eigen::MatrixXd Ap(q, q);
+  Eigen::VectorXd rhs(q);
+  for (int r = 0; r < q; ++r) {
+    rhs(r) = -vn(points[r]);
+    for (int c = 0; c < q; ++c) Ap(r, c) = A(points[r], points[c]);
+  }
+  const Eigen::VectorXd j = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Ap).solve(rhs);
+  for (int r = 0; r < q; ++r) {
+    impulses[points[r]] += j(r);
+    apply(s, f, points[r], j(r) * f.frame[points[r]].n);
+  }
+}
+
+}  // namespace
+
 double resolve_island_impacts(const IslandView& v, const std::vector<IslandContact>& contacts,
                               IslandState& s, double rest_speed, bool inelastic,
                               std::vector<double>& impulses) {
@@ -473,6 +496,7 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
   // travels along a chain of touching bodies (Newton's cradle) instead of being shared out at
   // once by pairs that were not approaching.
   const int max_passes = 4 * n + 16;
+  std::vector<int> plastic_last;  // the points the last Zeno pass stopped
   for (int pass = 0; pass < max_passes; ++pass) {
     std::vector<char> approaching_pair(v.island->pairs.size(), 0);
     for (int i = 0; i < n; ++i)
@@ -530,23 +554,14 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
       std::vector<int> plastic;
       for (int i = 0; i < n; ++i) {
         const IslandPair& p = v.island->pairs[contacts[i].pair];
-        const bool joined = body_hit[static_cast<std::size_t>(p.b.index)] ||
-                            (p.a.kind == Side::Member && body_hit[static_cast<std::size_t>(p.a.index)]);
+        const bool joined =
+            body_hit[static_cast<std::size_t>(p.b.index)] ||
+            (p.a.kind == Side::Member && body_hit[static_cast<std::size_t>(p.a.index)]);
         if (joined && vn(i) <= rest_speed) plastic.push_back(i);
       }
-      const int q = static_cast<int>(plastic.size());
-      Eigen::MatrixXd Ap(q, q);
-      Eigen::VectorXd rhs(q);
-      for (int r = 0; r < q; ++r) {
-        rhs(r) = -vn(plastic[r]);
-        for (int c = 0; c < q; ++c) Ap(r, c) = A(plastic[r], plastic[c]);
-      }
-      const Eigen::VectorXd j = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Ap).solve(rhs);
-      for (int r = 0; r < q; ++r) {
-        impulses[plastic[r]] += j(r);
-        apply(s, f, plastic[r], j(r) * f.frame[plastic[r]].n);
-      }
+      stop_points(A, f, plastic, vn, s, impulses);
       vn = speeds();
+      plastic_last = plastic;
       continue;
     }
     const std::vector<double> saved = impulses;
@@ -597,6 +612,16 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
     // A tangential impulse can turn a body so that a point approaches again: a last
     // inelastic pass stops every approach (a projection: it only dissipates).
     vn = speeds();
+    // After a Zeno pass the friction impulse turns the body it stopped (a sliding box rocked by
+    // its friction torque) and lifts some of its points as slowly as it lowers others: stopped
+    // again together, in the same projection, or they rock on in impacts microseconds apart.
+    std::vector<int> again;
+    for (int i : plastic_last)
+      if (std::abs(vn(i)) <= rest_speed) again.push_back(i);
+    if (!again.empty()) {
+      stop_points(A, f, again, vn, s, impulses);
+      vn = speeds();
+    }
     std::vector<char> approaching_pair(v.island->pairs.size(), 0);
     for (int i = 0; i < n; ++i)
       if (vn(i) < -eps) approaching_pair[contacts[i].pair] = 1;
@@ -724,9 +749,9 @@ bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>
   if (!sticks) {
     for (int i = 0; i < n; ++i) {
       const double slip = u.segment<2>(2 * i).norm();
-      imp.segment<2>(2 * i) = slip > 0.0 ? Eigen::Vector2d(-mu[i] * normal_impulse[i] *
-                                                           u.segment<2>(2 * i) / slip)
-                                         : Eigen::Vector2d::Zero();
+      imp.segment<2>(2 * i) =
+          slip > 0.0 ? Eigen::Vector2d(-mu[i] * normal_impulse[i] * u.segment<2>(2 * i) / slip)
+                     : Eigen::Vector2d::Zero();
     }
     // Kinetic energy along σ·imp is KE0 + σ (u·imp) + ½ σ² impᵀK imp: the σ in [0, 1] that
     // dissipates most, so sliding friction stops a slip but never reverses it.
@@ -734,8 +759,7 @@ bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>
     if (slope >= 0.0) return false;
     imp *= curvature > 0.0 ? std::min(1.0, -slope / curvature) : 1.0;
   }
-  for (int i = 0; i < n; ++i)
-    apply(s, f, i, imp(2 * i) * t[2 * i] + imp(2 * i + 1) * t[2 * i + 1]);
+  for (int i = 0; i < n; ++i) apply(s, f, i, imp(2 * i) * t[2 * i] + imp(2 * i + 1) * t[2 * i + 1]);
   return sticks;
 }
 
@@ -821,8 +845,10 @@ bool island_in_equilibrium(const IslandView& v, const std::vector<IslandContact>
       for (int c = 0; c < u; ++c)
         if (in_p[c]) set.push_back(c);
       Eigen::MatrixXd Jp(J.rows(), static_cast<Eigen::Index>(set.size()));
-      for (std::size_t k = 0; k < set.size(); ++k) Jp.col(static_cast<Eigen::Index>(k)) = J.col(set[k]);
-      const Eigen::VectorXd zp = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jp).solve(b);
+      for (std::size_t k = 0; k < set.size(); ++k)
+        Jp.col(static_cast<Eigen::Index>(k)) = J.col(set[k]);
+      const Eigen::VectorXd zp =
+          Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Jp).solve(b);
       Eigen::VectorXd z = Eigen::VectorXd::Zero(u);
       for (std::size_t k = 0; k < set.size(); ++k) z(set[k]) = zp(static_cast<Eigen::Index>(k));
       bool positive = true;
@@ -839,6 +865,7 @@ bool island_in_equilibrium(const IslandView& v, const std::vector<IslandContact>
         if (x(c) <= 1e-15 * std::max(x.cwiseAbs().maxCoeff(), 1e-300)) in_p[c] = 0, x(c) = 0.0;
     }
   }
-  return (J * x + W).norm() <= 1e-9 * W.norm();}
+  return (J * x + W).norm() <= 1e-9 * W.norm();
+}
 
 }  // namespace tumble
