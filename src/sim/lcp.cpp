@@ -105,24 +105,44 @@ bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
   const double scale_w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
   const double scale_f = scale_w / std::max(A.cwiseAbs().maxCoeff(), 1e-300);
   // Warm start: the last clamped set, solved at once; kept if it is complementary (the usual
-  // case for contacts that did not change mode since the last evaluation).
-  std::vector<int> C;
-  for (int i = 0; i < n; ++i)
-    if (active[i]) C.push_back(i);
-  if (!C.empty()) {
-    const Eigen::VectorXd fc = solve_subset(A, C, -b);
-    bool ok = (fc.array() >= -scale_f).all();
-    if (ok) {
-      for (std::size_t r = 0; r < C.size(); ++r) f(C[r]) = std::max(fc(r), 0.0);
-      const Eigen::VectorXd w = A * f + b;
-      for (int i = 0; i < n && ok; ++i)
-        ok = active[i] ? std::abs(w(i)) <= 1e3 * scale_w : w(i) >= -scale_w;
-    }
-    if (ok) return true;
+  // case for contacts that did not change mode since the last evaluation). Otherwise a few
+  // block pivots (Kostreva's; Júdice and Pires): every clamped row whose force came out
+  // negative is freed and every free row that is violated is clamped, all at once. Rows that a
+  // symmetric pose makes equal (the two ends of an edge) then change together, where Dantzig's
+  // one pivot at a time frees one of them by round-off and keeps the other: with sliding
+  // friction the LCP has both answers, and the lopsided one turns a planar scene out of its
+  // plane. Block pivoting can cycle when A is not a P-matrix: after a few it hands over.
+  std::vector<char> set_now(active.begin(), active.end());
+  for (int round = 0; round < 4; ++round) {
+    std::vector<int> C;
+    for (int i = 0; i < n; ++i)
+      if (set_now[i]) C.push_back(i);
+    if (C.empty() && round == 0) break;
     f.setZero();
-    C.clear();
+    bool ok = true;
+    std::vector<char> next = set_now;
+    if (!C.empty()) {
+      const Eigen::VectorXd fc = solve_subset(A, C, -b);
+      for (std::size_t r = 0; r < C.size(); ++r) {
+        if (fc(r) < -scale_f) next[C[r]] = 0, ok = false;
+        f(C[r]) = std::max(fc(r), 0.0);
+      }
+    }
+    const Eigen::VectorXd w = A * f + b;
+    for (int i = 0; i < n; ++i) {
+      if (set_now[i] && !(std::abs(w(i)) <= 1e3 * scale_w) && next[i]) ok = false;
+      if (!set_now[i] && w(i) < -scale_w) next[i] = 1, ok = false;
+    }
+    if (ok) {
+      for (int i = 0; i < n; ++i) active[i] = set_now[i];
+      return true;
+    }
+    if (next == set_now) break;
+    set_now.swap(next);
   }
+  f.setZero();
   // Dantzig / Baraff: f = 0, a = b; drive every row with a < 0 to a = 0 or f = 0.
+  std::vector<int> C;
   std::vector<char> clamped(static_cast<std::size_t>(n), 0);
   Eigen::VectorXd a = b;
   int pivots = 0;

@@ -83,5 +83,29 @@ TEST(LcpPivoting, SolvesAnUnsymmetricProblemPrincipalPivotingCannot) {
   EXPECT_LT((again - expected).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+TEST(LcpPivoting, RowsThatASymmetricPoseMakesEqualChangeTogether) {
+  // Rows 0 and 1 are the two ends of an edge in a symmetric pose (equal rows, swapped), with
+  // sliding friction's coupling making A not a P-matrix: the LCP then has a lopsided answer,
+  // (1, 0, 0), as well as the symmetric one, (1/3, 1/3, 0). The warm start (only row 2 was
+  // clamped) fails; Dantzig's method from f = 0 drives row 0 first, which lifts row 1 off, and
+  // ends lopsided, turning a planar scene out of its plane. Block pivoting changes both ends
+  // together. Exact in thirds.
+  Eigen::MatrixXd A(3, 3);
+  A << 1.0, 2.0, 0.0,  //
+      2.0, 1.0, 0.0,   //
+      0.0, 0.0, 1.0;
+  Eigen::VectorXd b(3);
+  b << -1.0, -1.0, 1.0;
+  Eigen::VectorXd f;
+  std::vector<char> active{0, 0, 1};
+  ASSERT_TRUE(solve_lcp_pivoting(A, b, f, active));
+  const Eigen::VectorXd expected = (Eigen::VectorXd(3) << 1.0 / 3.0, 1.0 / 3.0, 0.0).finished();
+  EXPECT_LT((f - expected).cwiseAbs().maxCoeff(), 1e-15);  // a 2x2 solve: round-off only
+  EXPECT_NEAR(f(0), f(1), 1e-15);
+  const Eigen::VectorXd w = A * f + b;
+  EXPECT_NEAR(w(2), 1.0, 1e-15);
+  EXPECT_EQ(active, (std::vector<char>{1, 1, 0}));
+}
+
 }  // namespace
 }  // namespace tumble
