@@ -522,7 +522,7 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
       Eigen::VectorXd j;
       std::vector<char> active;
       if (elastic)
-        solve_lcp_pivoting(As, rhs, j, active);
+        solve_lcp_pivoting(As, rhs, j, active, /*ridge_on_stall=*/true);
       else
         solve_lcp_dissipative(As, rhs, j, active);
       for (int r = 0; r < k; ++r) {

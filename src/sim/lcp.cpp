@@ -198,6 +198,14 @@ bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
     f(i) = std::max(f(i), 0.0);
     active[i] = clamped[i];
   }
+  // On dependent rows (a face's four corners among other contacts) the least-squares steps can
+  // end far off complementarity: a force where its row separates at a few percent of |b|. That
+  // answer is no solution; the caller's next method takes over. Round-off of a regular solve is
+  // some 1e-12 of |b|, so 1e-6 only catches the gross failures.
+  const Eigen::VectorXd w = A * f + b;
+  const double gross = 1e-6 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  for (int i = 0; i < n; ++i)
+    if (f(i) > scale_f && std::abs(w(i)) > gross) return false;
   return true;
 }
 

@@ -107,5 +107,35 @@ TEST(LcpPivoting, RowsThatASymmetricPoseMakesEqualChangeTogether) {
   EXPECT_EQ(active, (std::vector<char>{1, 1, 0}));
 }
 
+TEST(LcpPivoting, DependentRowsOfAFaceEndComplementary) {
+  // The four corners of a standing domino's base on the floor at an impact (dumped from the
+  // dominoes, every digit): a rank-3 Delassus matrix, symmetric under swapping corners 0↔2 and
+  // 1↔3. Dantzig's least-squares steps on its dependent rows ended with a push at a corner that
+  // separates (w = 3e-3 where f > 0); that answer is now refused, and the ridged retry (as every
+  // impact asks) reaches the solution, complementary to round-off and symmetric.
+  Eigen::MatrixXd A(4, 4);
+  A << 297.631172273689, 272.16939752688086, 83.955958598475306, 58.494183851667174,  //
+      272.16939752688086, 297.631172273689, 58.494183851667174, 83.95595859847532,    //
+      83.955958598475306, 58.494183851667174, 297.631172273689, 272.16939752688086,   //
+      58.494183851667174, 83.95595859847532, 272.16939752688086, 297.631172273689;
+  Eigen::VectorXd b(4);
+  b << -0.0041345328659468487, -0.025520715018440818, -0.0041345328659468487,
+      -0.025520715018440818;
+  Eigen::VectorXd f;
+  std::vector<char> active;
+  solve_lcp_pivoting(A, b, f, active, /*ridge_on_stall=*/true);
+  const Eigen::VectorXd w = A * f + b;
+  // The ridge moves w by 1e-10 |A| f; 1e-9 |b| bounds that and the solves' round-off.
+  const double tol = 1e-9 * b.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 4; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_GE(f(i), 0.0);
+    EXPECT_GE(w(i), -tol);
+    EXPECT_LE(std::abs(f(i) * w(i)), tol * f.cwiseAbs().maxCoeff());
+  }
+  EXPECT_NEAR(f(0), f(2), 1e-9 * f.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(f(1), f(3), 1e-9 * f.cwiseAbs().maxCoeff());
+}
+
 }  // namespace
 }  // namespace tumble
