@@ -198,17 +198,21 @@ bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
     f(i) = std::max(f(i), 0.0);
     active[i] = clamped[i];
   }
-  // On dependent rows (a face's four corners among other contacts) the least-squares steps can
-  // end far off complementarity: a force where its row separates at a few percent of |b|. That
-  // answer is no solution; the caller's next method takes over. Round-off of a regular solve is
-  // some 1e-12 of |b|, so 1e-6 only catches the gross failures.
-  const Eigen::VectorXd w = A * f + b;
-  const double gross = 1e-6 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
-  for (int i = 0; i < n; ++i)
-    if (f(i) > scale_f && std::abs(w(i)) > gross) return false;
   return true;
 }
 
+// On dependent rows (a face's four corners among other contacts) Dantzig's least-squares steps
+// can end far off complementarity: a force where its row separates at a few percent of |b|.
+// That answer is no solution. Round-off of a regular solve is some 1e-12 of |b|, so 1e-6 only
+// catches the gross failures.
+bool grossly_off(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& f) {
+  const double scale_w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  const double scale_f = scale_w / std::max(A.cwiseAbs().maxCoeff(), 1e-300);
+  const Eigen::VectorXd w = A * f + b;
+  for (Eigen::Index i = 0; i < b.size(); ++i)
+    if (f(i) > scale_f && std::abs(w(i)) > 1e6 * scale_w) return true;
+  return false;
+}
 
 // Whether f solves the LCP within the pivoting's tolerances: f >= 0, w = A f + b >= 0, and
 // w = 0 where f > 0.
@@ -321,20 +325,22 @@ bool lemke(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
 
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                         std::vector<char>& active, bool ridge_on_stall) {
-  if (pivot(A, b, f, active)) return true;
+  bool stalled = !pivot(A, b, f, active);
+  if (!stalled && !grossly_off(A, b, f)) return true;
   // Contact matrices are only semidefinite: four coplanar points of a face, or a light body
-  // pressed between a heavy one and the floor, give dependent rows, where pivoting can stall
-  // (and its least-squares steps choose among many force distributions by round-off, so a
-  // symmetric stack would get an asymmetric push). Then a diagonal of 1e-10 of the largest one
-  // makes the matrix definite: the solution is unique (for a symmetric pose, symmetric) and
-  // Dantzig's method reaches it; it moves w = A f + b by 1e-10 |A| f, a tenth of the
-  // tolerance. Only on a stall, and where the caller asks (impacts: a push must not
-  // depend on round-off), so that every regular solve stays exact to round-off.
-  if (ridge_on_stall) {
+  // pressed between a heavy one and the floor, give dependent rows, where pivoting can stall or
+  // end off complementarity (and its least-squares steps choose among many force distributions
+  // by round-off, so a symmetric stack would get an asymmetric push). Then a diagonal of 1e-10
+  // of the largest one makes the matrix definite: the solution is unique (for a symmetric pose,
+  // symmetric) and Dantzig's method reaches it; it moves w = A f + b by 1e-10 |A| f, a tenth of
+  // the tolerance. On a stall only where the caller asks (impacts: a push must not depend on
+  // round-off), so that every regular solve stays exact to round-off; an answer off
+  // complementarity is no answer, and always gets the retry.
+  if (ridge_on_stall || !stalled) {
     Eigen::MatrixXd ridged = A;
     ridged.diagonal().array() += 1e-10 * std::max(A.diagonal().cwiseAbs().maxCoeff(), 1e-300);
     std::fill(active.begin(), active.end(), 0);
-    if (pivot(ridged, b, f, active)) return true;
+    if (pivot(ridged, b, f, active) && !grossly_off(A, b, f)) return true;
   }
   if (lemke(A, b, f, active)) return true;
   // No method reached a solution (a friction problem without one: Painlevé's paradox).
