@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "sim_fixtures.hpp"
@@ -160,23 +161,30 @@ TEST(PairImpact, EnergyIsNeverGainedAndRunsAreDeterministic) {
     EXPECT_TRUE(same_pose(a.bodies()[i].state, b.bodies()[i].state));
 }
 
-TEST(Islands, ARowOfThinPlatesIsNotOneIsland) {
-  // Dominoes 7.5 mm thick stand 30 mm apart: their bounding spheres (27 mm) overlap, their
-  // boxes do not. Until the pushed one reaches the next (at 0.129 s), the others sleep: their
-  // exact motion is none, and they are not stepped at all.
+// Five dominoes 7.5 × 48 × 24 mm (650 kg/m³) standing 30 mm apart on a floor (friction 0.6,
+// restitution 0.1), the first tipped about its front bottom edge; dt 5e-4, rk4.
+WorldDef five_dominoes(double friction, std::optional<double> restitution) {
   WorldDef def = test::world_def(Integrator::Rk4, 5e-4, /*floor=*/true, 0.1);
   def.floor->friction = 0.6;
   const Vec3 size(0.0075, 0.048, 0.024);
   for (int i = 0; i < 5; ++i) {
     BodyDef d = test::box_def(size, 650.0 * size.prod(), Vec3(0.03 * i, 0.024, 0.0));
-    d.friction = 0.4;
-    if (i == 0) {  // tipped about its front bottom edge
+    d.friction = friction;
+    if (restitution) d.restitution = *restitution;
+    if (i == 0) {
       d.velocity = Vec3(0.096, 0.015, 0.0);
       d.angular_velocity = Vec3(0.0, 0.0, -4.0);
     }
     def.bodies.push_back(d);
   }
-  World w(def);
+  return def;
+}
+
+TEST(Islands, ARowOfThinPlatesIsNotOneIsland) {
+  // Dominoes 7.5 mm thick stand 30 mm apart: their bounding spheres (27 mm) overlap, their
+  // boxes do not. Until the pushed one reaches the next (at 0.129 s), the others sleep: their
+  // exact motion is none, and they are not stepped at all.
+  World w(five_dominoes(0.4, /*restitution=*/std::nullopt));
   const World start = w;
   for (int k = 0; k < 200; ++k) w.step();  // 0.1 s
   EXPECT_FALSE(w.bodies()[0].at_rest);
@@ -195,20 +203,8 @@ TEST(Islands, ARowOfDominoesFallsInItsPlane) {
   // answer as well as the symmetric one, freeing one end and keeping the other turned the row
   // out of its plane (2.2 rad/s by 0.3 s, and 97 impacts where 21 belong). Measured: 1.5e-13
   // of out-of-plane motion at 0.3 s; 1e-9 leaves four orders of round-off growth.
-  WorldDef def = test::world_def(Integrator::Rk4, 5e-4, /*floor=*/true, 0.1);
-  def.floor->friction = 0.6;
   const Vec3 size(0.0075, 0.048, 0.024);
-  for (int i = 0; i < 5; ++i) {
-    BodyDef d = test::box_def(size, 650.0 * size.prod(), Vec3(0.03 * i, 0.024, 0.0));
-    d.friction = 0.6;
-    d.restitution = 0.1;
-    if (i == 0) {
-      d.velocity = Vec3(0.096, 0.015, 0.0);
-      d.angular_velocity = Vec3(0.0, 0.0, -4.0);
-    }
-    def.bodies.push_back(d);
-  }
-  World w(def);
+  World w(five_dominoes(0.6, 0.1));
   for (int k = 0; k < 600; ++k) {  // 0.3 s: the push has reached the fourth domino
     w.step();
     for (std::size_t i = 0; i < w.bodies().size(); ++i) {
