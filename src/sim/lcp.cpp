@@ -201,30 +201,26 @@ bool pivot(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
   return true;
 }
 
-// On dependent rows (a face's four corners among other contacts) Dantzig's least-squares steps
-// can end far off complementarity: a force where its row separates at a few percent of |b|.
-// That answer is no solution. Round-off of a regular solve is some 1e-12 of |b|, so 1e-6 only
-// catches the gross failures.
-bool grossly_off(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& f) {
-  const double scale_w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
-  const double scale_f = scale_w / std::max(A.cwiseAbs().maxCoeff(), 1e-300);
-  const Eigen::VectorXd w = A * f + b;
-  for (Eigen::Index i = 0; i < b.size(); ++i)
-    if (f(i) > scale_f && std::abs(w(i)) > 1e6 * scale_w) return true;
-  return false;
-}
-
-// Whether f solves the LCP within the pivoting's tolerances: f >= 0, w = A f + b >= 0, and
-// w = 0 where f > 0.
-bool complementary(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& f) {
+// Whether f solves the LCP within the pivoting's tolerances: f >= 0, w = A f + b >= 0 (the
+// signs, where `signs`), and w = 0 where f > 0, to `slack` times 1e-9 |b|.
+bool complementary(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& f,
+                   double slack = 1e3, bool signs = true) {
   const double scale_w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
   const double scale_f = scale_w / std::max(A.cwiseAbs().maxCoeff(), 1e-300);
   const Eigen::VectorXd w = A * f + b;
   for (Eigen::Index i = 0; i < b.size(); ++i) {
-    if (f(i) < -scale_f || w(i) < -scale_w) return false;
-    if (f(i) > scale_f && std::abs(w(i)) > 1e3 * scale_w) return false;
+    if (signs && (f(i) < -scale_f || w(i) < -scale_w)) return false;
+    if (f(i) > scale_f && std::abs(w(i)) > slack * scale_w) return false;
   }
   return true;
+}
+
+// On dependent rows (a face's four corners among other contacts) Dantzig's least-squares steps
+// can end far off complementarity: a force where its row separates at a few percent of |b|.
+// That answer is no solution. Round-off of a regular solve is some 1e-12 of |b|, so 1e-3 of it
+// only catches the gross failures.
+bool grossly_off(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen::VectorXd& f) {
+  return !complementary(A, b, f, /*slack=*/1e6, /*signs=*/false);
 }
 
 // Lemke's complementary pivoting (Cottle, Pang & Stone, "The Linear Complementarity Problem",
