@@ -8,11 +8,6 @@
 #include "lcp.hpp"
 
 namespace tumble {
-namespace {
-
-bool round_side(const RigidBody* b) {
-  return b && (b->shape() == ShapeKind::Sphere || b->shape() == ShapeKind::Particle);
-}
 
 // Where a force along the contact acts on one side, and how its point moves.
 struct SideGeometry {
@@ -26,6 +21,12 @@ struct Frames {
   std::vector<SideGeometry> a, b;
   std::vector<bool> round_pair;
 };
+
+namespace {
+
+bool round_side(const RigidBody* b) {
+  return b && (b->shape() == ShapeKind::Sphere || b->shape() == ShapeKind::Particle);
+}
 
 Frames frames_of(const IslandView& v, const std::vector<IslandContact>& contacts,
                  const IslandState& s) {
@@ -131,6 +132,7 @@ void apply(IslandState& s, const Frames& f, int i, const Vec3& impulse) {
 // The direction a sliding contact slips: its tangential relative velocity, or where that is
 // still below round-off of its start (sliding from rest), the direction it was found to go.
 Vec3 slip_unit(const IslandContact& c, const ContactFrame& f, const Vec3& dv) {
+  if (c.fixed_slip) return c.slip_direction;
   const Vec3 slip = dv - f.n * f.n.dot(dv);
   const double speed = slip.norm();
   if (speed > 1e-9 * std::max(dv.norm(), 1e-3) && speed > 0.0) return slip / speed;
@@ -232,34 +234,36 @@ std::vector<IslandDynamics::Free> IslandDynamics::free_motion(const IslandState&
   return k;
 }
 
-Eigen::VectorXd IslandDynamics::solve(const IslandState& s, const std::vector<Free>& k) const {
+IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std::vector<Free>& k,
+                                                 const Frames& f) const {
   const std::vector<IslandContact>& held = *held_;
   const int n = static_cast<int>(held.size());
-  const Frames f = frames_of(v_, held, s);
   const std::vector<MassInfo> m = masses(v_, s);
+  auto point_vel = [&](const SideGeometry& g, const Vec3& lever) -> Vec3 {
+    if (g.member < 0) return Vec3::Zero();
+    const Free& q = k[g.member];
+    return q.v + q.omega.cross(lever);
+  };
   // The force direction of each contact: the normal, and against the slip for a sliding one
   // (Coulomb kinetic friction proportional to the normal force: Baraff's dynamic friction,
   // which makes A unsymmetric).
   std::vector<Vec3> dir(static_cast<std::size_t>(n));
   Eigen::VectorXd b(n);
+  std::vector<int> sticking;
   for (int i = 0; i < n; ++i) {
     const ContactFrame& c = f.frame[i];
     dir[i] = c.n;
     const IslandPair& p = v_.island->pairs[held[i].pair];
     const Vec3 dv = relative_velocity(v_, s, f, i);
     if (held[i].sliding && p.friction > 0.0) dir[i] -= p.friction * slip_unit(held[i], c, dv);
+    if (!held[i].sliding && p.friction > 0.0) sticking.push_back(i);
     // Normal acceleration without contact forces: b = n·(a_pb − a_pa) + 2 ṅ·(v_pb − v_pa).
     auto point_acc = [&](const SideGeometry& g) -> Vec3 {
       if (g.member < 0) return Vec3::Zero();
       const Free& q = k[g.member];
       return q.a + q.alpha.cross(g.point_lever) + q.omega.cross(q.omega.cross(g.point_lever));
     };
-    auto point_vel = [&](const SideGeometry& g) -> Vec3 {
-      if (g.member < 0) return Vec3::Zero();
-      const Free& q = k[g.member];
-      return q.v + q.omega.cross(g.point_lever);
-    };
-    const Vec3 dvel = point_vel(f.b[i]) - point_vel(f.a[i]);
+    const Vec3 dvel = point_vel(f.b[i], f.b[i].point_lever) - point_vel(f.a[i], f.a[i].point_lever);
     double bi = c.n.dot(point_acc(f.b[i]) - point_acc(f.a[i]));
     if (f.round_pair[i]) {
       // Two round sides: the separation is |x_b − x_a| − r_a − r_b, whose second derivative
@@ -274,7 +278,8 @@ Eigen::VectorXd IslandDynamics::solve(const IslandState& s, const std::vector<Fr
     b(i) = bi;
   }
   const Eigen::MatrixXd A = contact_matrix(f, m, dir);
-  Eigen::VectorXd force;
+  HeldForces out;
+  out.friction.assign(static_cast<std::size_t>(n), Vec3::Zero());
   std::vector<char> local;
   std::vector<char>& active = active_ ? *active_ : local;
   // With sliding friction A is not semidefinite, and the LCP may have several solutions: a box
@@ -285,29 +290,162 @@ Eigen::VectorXd IslandDynamics::solve(const IslandState& s, const std::vector<Fr
   // them clamped; it is kept when its forces are all >= 0 (a complementary solution).
   if (active.size() != static_cast<std::size_t>(b.size()))
     active.assign(static_cast<std::size_t>(b.size()), 1);
-  if (!solve_lcp_pivoting(A, b, force, active) && failed_) *failed_ = true;
-  return force;
+  if (sticking.empty()) {
+    if (!solve_lcp_pivoting(A, b, out.normal, active) && failed_) *failed_ = true;
+  } else {
+    // Static friction inside the stretch (Baraff 1994, section 7): a sticking contact that
+    // presses keeps its slip, two tangential rows whose relative acceleration is zero, with
+    // free (unbounded) forces; whether they stay in the cone is checked where a stretch
+    // starts (hold_or_slip). The equalities are eliminated, f_E = −A_EE⁺ (A_EN f_N + b_E), and
+    // the normal LCP is solved on the Schur complement: the tangent rows of coplanar points
+    // (a face's four corners) are dependent, so A_EE is singular and b_E has round-off outside
+    // its range, which a pivoting solve of the mixed problem does not survive; the
+    // pseudo-inverse takes b_E in least squares and puts no force in A_EE's null space.
+    // Which sticking contacts press is the normal LCP's own answer: begun from its last clamped
+    // set, redone (at most 4 times) while they disagree.
+    Frames g = f;
+    std::vector<Vec3> gdir = dir;
+    std::vector<Vec3> t(2 * sticking.size());
+    for (std::size_t j = 0; j < sticking.size(); ++j) {
+      const int i = sticking[j];
+      tangents(f.frame[i].n, t[2 * j], t[2 * j + 1]);
+      for (int a = 0; a < 2; ++a) {
+        g.frame.push_back(f.frame[i]);
+        g.frame.back().n = t[2 * j + a];
+        g.a.push_back(f.a[i]);
+        g.b.push_back(f.b[i]);
+        g.a.back().point_lever = f.a[i].lever;
+        g.b.back().point_lever = f.b[i].lever;
+        g.round_pair.push_back(f.round_pair[i]);
+        gdir.push_back(t[2 * j + a]);
+      }
+    }
+    const Eigen::MatrixXd M = contact_matrix(g, m, gdir);
+    // Tangential acceleration of the touching points without contact forces. A polyhedron's
+    // point is material (a + α × r + ω × (ω × r)); a ball's is where it touches, not a
+    // material point, so its slip changes by a + α × r alone (rolling has no slip to turn).
+    // A face's tangents turn with it: (ω_face × t)·(v_pb − v_pa).
+    const int e = static_cast<int>(t.size());
+    Eigen::VectorXd bt(e);
+    for (int r = 0; r < e; ++r) {
+      const int i = sticking[static_cast<std::size_t>(r / 2)];
+      const Vec3& tr = t[static_cast<std::size_t>(r)];
+      auto tangential_acc = [&](const SideGeometry& side, bool round) -> Vec3 {
+        if (side.member < 0) return Vec3::Zero();
+        const Free& q = k[side.member];
+        Vec3 acc = q.a + q.alpha.cross(side.lever);
+        if (!round) acc += q.omega.cross(q.omega.cross(side.lever));
+        return acc;
+      };
+      const IslandPair& p = v_.island->pairs[held[i].pair];
+      const bool round_a = round_side(v_.side_body(p.a)), round_b = round_side(v_.side_body(p.b));
+      double bi = tr.dot(tangential_acc(f.b[i], round_b) - tangential_acc(f.a[i], round_a));
+      if (held[i].normal_on >= 0) {
+        const Vec3 dvel = point_vel(f.b[i], f.b[i].lever) - point_vel(f.a[i], f.a[i].lever);
+        bi += k[held[i].normal_on].omega.cross(tr).dot(dvel);
+      }
+      bt(r) = bi;
+    }
+    Eigen::VectorXd fE = Eigen::VectorXd::Zero(e);
+    for (int round = 0; round < 4; ++round) {
+      std::vector<int> rows;  // tangent rows (0-based in the tangent block) of pressing ones
+      for (int r = 0; r < e; ++r)
+        if (active[static_cast<std::size_t>(sticking[static_cast<std::size_t>(r / 2)])])
+          rows.push_back(r);
+      const std::vector<char> pressing = active;
+      const int q = static_cast<int>(rows.size());
+      Eigen::VectorXd y;
+      Eigen::MatrixXd X;
+      Eigen::MatrixXd S = A;
+      Eigen::VectorXd c = b;
+      Eigen::MatrixXd Ane(n, q);
+      if (q > 0) {
+        Eigen::MatrixXd Aee(q, q), Aen(q, n);
+        Eigen::VectorXd be(q);
+        for (int r = 0; r < q; ++r) {
+          be(r) = bt(rows[r]);
+          for (int cc = 0; cc < q; ++cc) Aee(r, cc) = M(n + rows[r], n + rows[cc]);
+          Aen.row(r) = M.block(n + rows[r], 0, 1, n);
+          Ane.col(r) = M.block(0, n + rows[r], n, 1);
+        }
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+        cod.setThreshold(1e-10);
+        cod.compute(Aee);
+        X = cod.solve(Aen);
+        y = cod.solve(be);
+        S -= Ane * X;
+        c -= Ane * y;
+      }
+      if (!solve_lcp_pivoting(S, c, out.normal, active) && failed_) *failed_ = true;
+      fE.setZero();
+      if (q > 0) {
+        const Eigen::VectorXd fq = -(X * out.normal + y);
+        for (int r = 0; r < q; ++r) fE(rows[r]) = fq(r);
+      }
+      bool agree = true;
+      for (int i : sticking)
+        agree &= (active[static_cast<std::size_t>(i)] != 0) ==
+                 (pressing[static_cast<std::size_t>(i)] != 0);
+      if (agree) break;
+    }
+    for (std::size_t j = 0; j < sticking.size(); ++j)
+      out.friction[static_cast<std::size_t>(sticking[j])] =
+          fE(2 * j) * t[2 * j] + fE(2 * j + 1) * t[2 * j + 1];
+  }
+  out.on_b.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) out.on_b[i] = out.normal(i) * dir[i] + out.friction[i];
+  return out;
 }
 
 Eigen::VectorXd IslandDynamics::contact_forces(const IslandState& s) const {
   if (!held_ || held_->empty()) return {};
-  return solve(s, free_motion(s));
+  return solve(s, free_motion(s), frames_of(v_, *held_, s)).normal;
+}
+
+std::vector<Vec3> IslandDynamics::slip_accelerations(const IslandState& s) const {
+  if (!held_ || held_->empty()) return {};
+  std::vector<Free> k = free_motion(s);
+  const Frames f = frames_of(v_, *held_, s);
+  const HeldForces forces = solve(s, k, f);
+  std::vector<Vec3> F(k.size(), Vec3::Zero()), tau(k.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < held_->size(); ++i) {
+    if (f.b[i].member >= 0) {
+      F[f.b[i].member] += forces.on_b[i];
+      tau[f.b[i].member] += f.b[i].lever.cross(forces.on_b[i]);
+    }
+    if (f.a[i].member >= 0) {
+      F[f.a[i].member] -= forces.on_b[i];
+      tau[f.a[i].member] -= f.a[i].lever.cross(forces.on_b[i]);
+    }
+  }
+  auto acc = [&](const SideGeometry& g) -> Vec3 {
+    if (g.member < 0) return Vec3::Zero();
+    const Free& q = k[g.member];
+    const Vec3 a = q.a + F[g.member] * v_.member(g.member).inverse_mass();
+    const Vec3 alpha = q.alpha + q.Iinv * tau[g.member];
+    return a + alpha.cross(g.lever) + q.omega.cross(q.omega.cross(g.lever));
+  };
+  std::vector<Vec3> out(held_->size());
+  for (std::size_t i = 0; i < held_->size(); ++i) {
+    const Vec3 rel = acc(f.b[i]) - acc(f.a[i]);
+    out[i] = rel - f.frame[i].n * f.frame[i].n.dot(rel);
+  }
+  return out;
+}
+
+IslandDynamics::HeldForces IslandDynamics::held_forces(const IslandState& s) const {
+  if (!held_ || held_->empty()) return {};
+  return solve(s, free_motion(s), frames_of(v_, *held_, s));
 }
 
 std::vector<Rate> IslandDynamics::operator()(const IslandState& s) const {
   if (evaluations_) *evaluations_ += static_cast<long>(s.size());
   std::vector<Free> k = free_motion(s);
   if (held_ && !held_->empty()) {
-    const Eigen::VectorXd force = solve(s, k);
     const Frames f = frames_of(v_, *held_, s);
+    const HeldForces forces = solve(s, k, f);
     for (std::size_t i = 0; i < held_->size(); ++i) {
-      const ContactFrame& c = f.frame[i];
-      const IslandPair& p = v_.island->pairs[(*held_)[i].pair];
-      Vec3 dir = c.n;
-      if ((*held_)[i].sliding && p.friction > 0.0)
-        dir -= p.friction *
-               slip_unit((*held_)[i], c, relative_velocity(v_, s, f, static_cast<int>(i)));
-      const Vec3 F = force(static_cast<Eigen::Index>(i)) * dir;
+      const Vec3& F = forces.on_b[i];
       if (f.b[i].member >= 0) {
         k[f.b[i].member].F += F;
         k[f.b[i].member].tau += f.b[i].lever.cross(F);
@@ -614,7 +752,10 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
   bool friction = false;
   for (int i = 0; i < n; ++i) friction |= v.island->pairs[contacts[i].pair].friction > 0.0;
   if (friction) {
-    apply_island_friction(v, contacts, impulses, s);
+    // A slip slower than 1e-9 sqrt(g l) is round-off of a contact held sticking (its
+    // direction is noise): no kinetic impulse along it.
+    apply_island_friction(v, contacts, impulses, s,
+                          1e-9 * std::sqrt(v.forces->gravity.norm() * smallest));
     // A tangential impulse can turn a body so that a point approaches again: a last
     // inelastic pass stops every approach (a projection: it only dissipates).
     vn = speeds();
@@ -655,7 +796,8 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
 }
 
 bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>& contacts,
-                           const std::vector<double>& normal_impulse, IslandState& s) {
+                           const std::vector<double>& normal_impulse, IslandState& s,
+                           double still) {
   const int n = static_cast<int>(contacts.size());
   if (n == 0) return true;
   const Frames f = frames_of(v, contacts, s);
@@ -756,8 +898,8 @@ bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>
     for (int i = 0; i < n; ++i) {
       const double slip = u.segment<2>(2 * i).norm();
       imp.segment<2>(2 * i) =
-          slip > 0.0 ? Eigen::Vector2d(-mu[i] * normal_impulse[i] * u.segment<2>(2 * i) / slip)
-                     : Eigen::Vector2d::Zero();
+          slip > still ? Eigen::Vector2d(-mu[i] * normal_impulse[i] * u.segment<2>(2 * i) / slip)
+                       : Eigen::Vector2d::Zero();
     }
     // Kinetic energy along σ·imp is KE0 + σ (u·imp) + ½ σ² impᵀK imp: the σ in [0, 1] that
     // dissipates most, so sliding friction stops a slip but never reverses it.

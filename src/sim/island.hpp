@@ -41,6 +41,10 @@ struct IslandContact {
   bool sliding = false;     ///< kinetic friction inside the derivative
   /// Where a contact starts sliding from rest (its slip is still zero), the way it will slide.
   Vec3 slip_direction = Vec3::Zero();
+  /// Kinetic friction along slip_direction for the whole stretch (zero: none), not along the
+  /// slip: for a contact set sliding at a slip it may reverse inside the stretch, whose
+  /// direction there would be round-off.
+  bool fixed_slip = false;
   std::uint32_t feature = 0;
 };
 
@@ -76,6 +80,8 @@ struct IslandView {
 /// The frame of contact c at state s.
 ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const IslandState& s);
 
+struct Frames;
+
 /// dY/dt of every member: gravity, drag and the contact forces at the held contacts, found by
 /// one LCP over all of them (Baraff's resting contact, coupled across the island).
 class IslandDynamics {
@@ -85,8 +91,18 @@ class IslandDynamics {
       : v_(view), held_(held), active_(active), evaluations_(evaluations), failed_(solve_failed) {}
 
   std::vector<Rate> operator()(const IslandState& s) const;
+  /// What the held contacts exert at a state: per contact, its normal force (N), its static
+  /// friction (the world force on b of a sticking contact's tangential rows, zero for others)
+  /// and the whole force on b (normal, kinetic friction and static friction).
+  struct HeldForces {
+    Eigen::VectorXd normal;
+    std::vector<Vec3> friction, on_b;
+  };
   /// The normal force at every held contact for state s (N).
   Eigen::VectorXd contact_forces(const IslandState& s) const;
+  HeldForces held_forces(const IslandState& s) const;
+  /// The tangential relative acceleration (b minus a) of every held contact's points at s.
+  std::vector<Vec3> slip_accelerations(const IslandState& s) const;
   const IslandView& view() const { return v_; }
 
  private:
@@ -95,7 +111,7 @@ class IslandDynamics {
     Vec3 v, omega, F, tau, alpha, a;
   };
   std::vector<Free> free_motion(const IslandState& s) const;
-  Eigen::VectorXd solve(const IslandState& s, const std::vector<Free>& k) const;
+  HeldForces solve(const IslandState& s, const std::vector<Free>& k, const Frames& f) const;
 
   IslandView v_;
   const std::vector<IslandContact>* held_;
@@ -122,10 +138,12 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
                               std::vector<double>& impulses);
 
 /// Static friction for the sticking contacts of a stretch: impulses bounded by mu times their
-/// normal impulse over it (`normal_impulse`), all sticking when they fit, else sliding.
+/// normal impulse over it (`normal_impulse`), all sticking when they fit, else sliding (a
+/// contact slipping no faster than `still` then gets none: its slip's direction is round-off).
 /// Returns whether every contact could stick.
 bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>& contacts,
-                           const std::vector<double>& normal_impulse, IslandState& s);
+                           const std::vector<double>& normal_impulse, IslandState& s,
+                           double still = 0.0);
 
 /// After a static friction impulse at held contacts whose normal impulse over the stretch was
 /// `normal_impulse`: the normal impulses are redistributed (each staying >= 0) so that every

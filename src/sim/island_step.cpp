@@ -65,6 +65,134 @@ Vec3 contact_slip(const IslandView& v, const IslandContact& c, const IslandState
   return slip - f.n * f.n.dot(slip);
 }
 
+// Contacts of one symmetric pose (the two ends of a domino's edge, a box's four corners) reach
+// a mode change together, their ratios equal but for round-off: taking them one at a time, in
+// index order, would free one end and keep the other, a lopsided answer that turns a planar
+// scene out of its plane. A ratio within 1e-6 of the worst counts as tied with it.
+bool tied(double ratio, double worst) {
+  return ratio >= worst * (1.0 - 1e-6);
+}
+
+// Static friction inside a stretch holds a sticking contact with whatever tangential force
+// it takes; one that needs more than mu times its normal force (or presses not at all) slides
+// instead. The furthest outside its cone first (with those tied with it; freeing one changes
+// what the others need), until every sticking contact's force is inside its cone: the modes are
+// fixed here, where the stretch starts, and not inside its stages (a mode switch there makes the
+// derivative jump). `forces` are those of the modes it ends with. Returns the contacts it set
+// sliding, frictionless until aim_freed gives them their way.
+std::vector<std::size_t> hold_or_slip(const IslandView& v, const IslandDynamics& dynamics,
+                                      std::vector<IslandContact>& held, const IslandState& s,
+                                      IslandDynamics::HeldForces& forces) {
+  std::vector<std::size_t> freed;
+  forces = dynamics.held_forces(s);
+  bool any = false;
+  for (const IslandContact& c : held) any |= !c.sliding && v.island->pairs[c.pair].friction > 0.0;
+  for (std::size_t round = 0; any && round < held.size(); ++round) {
+    if (round > 0) forces = dynamics.held_forces(s);
+    std::vector<double> ratio(held.size(), 0.0);
+    double worst = 1.0 + 1e-9;
+    for (std::size_t i = 0; i < held.size(); ++i) {
+      const double mu = v.island->pairs[held[i].pair].friction;
+      const double ft = forces.friction[i].norm();
+      if (held[i].sliding || !(mu > 0.0) || !(ft > 0.0)) continue;
+      const double cap = mu * forces.normal(static_cast<Eigen::Index>(i));
+      ratio[i] = cap > 0.0 ? ft / cap : INFINITY;
+      worst = std::max(worst, ratio[i]);
+    }
+    if (!(worst > 1.0 + 1e-9)) break;
+    for (std::size_t i = 0; i < held.size(); ++i)
+      if (ratio[i] > 1.0 + 1e-9 && tied(ratio[i], worst)) {
+        held[i].sliding = true;
+        held[i].fixed_slip = true;
+        held[i].slip_direction.setZero();
+        freed.push_back(i);
+      }
+  }
+  if (!freed.empty()) forces = dynamics.held_forces(s);
+  return freed;
+}
+
+// The impulse that stops the slip of the held contacts taken as sticking, bounded by what
+// their friction has left over the coming stretch once it holds them (mu f_n − |f_t|, times
+// tau; `forces` are hold_or_slip's), applied with the normal impulses redistributed
+// (restore_normal_speeds). Where no such impulse exists, contacts are set sliding (added to
+// `freed`, for aim_freed) until it does. A slip below `still` (per contact) is round-off of a
+// held one, whose direction is noise: left alone.
+void stop_sticking_slip(const IslandView& v, const IslandDynamics::HeldForces& forces,
+                        std::vector<IslandContact>& held, const std::vector<double>& still,
+                        double tau, IslandState& s, std::vector<std::size_t>& freed) {
+  std::vector<std::size_t> which;
+  for (std::size_t i = 0; i < held.size(); ++i)
+    if (!held[i].sliding && v.island->pairs[held[i].pair].friction > 0.0 &&
+        contact_slip(v, held[i], s).norm() > still[i])
+      which.push_back(i);
+  if (which.empty()) return;
+  const Eigen::VectorXd& force = forces.normal;
+  // Where the joint impulse leaves a cone, the contact whose slip is largest against what its
+  // friction has left (with those tied with it) slides, and the others are tried again: a foot
+  // that cannot be stopped does not set its neighbours sliding at slips they stop in the stretch.
+  // (Kinetic friction at a slip that reverses inside the stretch points along the slip's
+  // round-off: it would turn a planar row of dominoes out of its plane.)
+  while (!which.empty()) {
+    std::vector<IslandContact> sticking;
+    std::vector<double> impulse;
+    for (std::size_t i : which) {
+      sticking.push_back(held[i]);
+      const double mu = v.island->pairs[held[i].pair].friction;
+      impulse.push_back(
+          std::max(0.0, force(static_cast<Eigen::Index>(i)) - forces.friction[i].norm() / mu) *
+          tau);
+    }
+    IslandState stopped = s;
+    if (apply_island_friction(v, sticking, impulse, stopped)) {
+      std::vector<double> loads;
+      for (Eigen::Index i = 0; i < force.size(); ++i) loads.push_back(force(i) * tau);
+      restore_normal_speeds(v, held, loads, stopped);
+      s = stopped;
+      return;
+    }
+    std::vector<double> ratio;
+    double worst = 0.0;
+    for (std::size_t i : which) {
+      const double cap =
+          v.island->pairs[held[i].pair].friction * force(static_cast<Eigen::Index>(i)) -
+          forces.friction[i].norm();
+      const double slip = contact_slip(v, held[i], s).norm();
+      ratio.push_back(cap > 0.0 ? slip / cap : INFINITY);
+      worst = std::max(worst, ratio.back());
+    }
+    std::vector<std::size_t> rest;
+    for (std::size_t k = 0; k < which.size(); ++k) {
+      if (!tied(ratio[k], worst)) {
+        rest.push_back(which[k]);
+        continue;
+      }
+      IslandContact& c = held[which[k]];
+      c.sliding = true;
+      c.fixed_slip = true;
+      c.slip_direction.setZero();
+      freed.push_back(which[k]);
+    }
+    which = rest;
+  }
+}
+
+// The way the contacts set sliding at a stretch's start go, fixed for the stretch: their slip
+// is small (they were taken as sticking) and may reverse inside it, where its direction is
+// round-off. They go the way their slip would be at the stretch's end if they were
+// frictionless, slip + tau · (its rate now): down the slope for a box set on a steep ramp; the
+// way it slips for a slip that the stretch does not reverse.
+void aim_freed(const IslandView& v, const IslandDynamics& dynamics,
+               std::vector<IslandContact>& held, const std::vector<std::size_t>& freed, double tau,
+               const IslandState& s) {
+  if (freed.empty()) return;
+  const std::vector<Vec3> rate = dynamics.slip_accelerations(s);
+  for (std::size_t i : freed) {
+    const Vec3 way = contact_slip(v, held[i], s) + tau * rate[i];
+    if (way.norm() > 0.0) held[i].slip_direction = way.normalized();
+  }
+}
+
 // Mid-step states carry unnormalised quaternions: collision geometry wants a rotation.
 IslandState normalized(const IslandState& s, RotationRep rep) {
   IslandState out = s;
@@ -323,6 +451,7 @@ void World::advance_island(const Island& island, double h) {
   bool solve_failed = false;
   bool settle = false;
   std::vector<char> active;
+  std::vector<std::pair<int, std::uint32_t>> active_of;  // the contacts `active` is for
   while (remaining > 0.0) {
     if (def_.poll && events > 0) def_.poll();
     std::vector<IslandContact> touching = find_contacts(state);
@@ -355,7 +484,26 @@ void World::advance_island(const Island& island, double h) {
       const Vec3 slip = contact_slip(view, c, state);
       c.sliding = slip.norm() > 2.0 * p.friction * dv;
     }
+    // The last clamped set is a warm start for the same contacts only: with sliding friction
+    // the LCP can have several solutions, and another set's (of the same size) picks one
+    // that holds a domino's edge by one end. A new set starts from all clamped.
+    std::vector<std::pair<int, std::uint32_t>> held_ids;
+    for (const IslandContact& c : held) held_ids.emplace_back(c.pair, c.feature);
+    if (held_ids != active_of) active.clear();
+    active_of = held_ids;
     const IslandDynamics dynamics(view, &held, &active, &evaluations_, &solve_failed);
+    // Static friction inside the stretch holds a sticking contact's slip where it is. Which
+    // contacts it can hold is found first (hold_or_slip: a box set on a ramp steeper than atan
+    // mu cannot be held); the slip of those it holds is then stopped by an impulse within what
+    // their friction has left over the stretch, and those it cannot stop slide.
+    // A slip slower than 1e-3 of the hold speed (1 nm/s at 1 m) is round-off of a contact
+    // held sticking (rk4's drift of a held point: ~1e-15 of its size a step).
+    std::vector<double> still;
+    for (const IslandContact& c : held) still.push_back(1e-3 * pair_tol[c.pair].hold_speed_mps);
+    IslandDynamics::HeldForces holding;
+    std::vector<std::size_t> freed = hold_or_slip(view, dynamics, held, state, holding);
+    stop_sticking_slip(view, holding, held, still, remaining, state, freed);
+    aim_freed(view, dynamics, held, freed, remaining, state);
     const IslandState start = state;
     auto advanced = [&](double tau, StepInfo* info) {
       return integrate_island(dynamics, start, tau, how, per_body, info);
@@ -363,33 +511,6 @@ void World::advance_island(const Island& island, double h) {
     double tau = remaining;
     StepInfo end_info;
     IslandState end = advanced(tau, &end_info);
-    // Contacts taken as sticking that friction cannot hold over the stretch (a box set on a
-    // ramp steeper than atan mu) slide instead, the way they went: the stretch is integrated
-    // again with kinetic friction there.
-    if (!held.empty()) {
-      std::vector<IslandContact> sticking;
-      std::vector<double> impulse;
-      std::vector<std::size_t> which;
-      const Eigen::VectorXd force = dynamics.contact_forces(start);
-      for (std::size_t i = 0; i < held.size(); ++i)
-        if (!held[i].sliding && island.pairs[held[i].pair].friction > 0.0) {
-          sticking.push_back(held[i]);
-          impulse.push_back(force(static_cast<Eigen::Index>(i)) * tau);
-          which.push_back(i);
-        }
-      IslandState trial = end;
-      if (!sticking.empty() && !apply_island_friction(view, sticking, impulse, trial)) {
-        bool changed = false;
-        for (std::size_t i : which) {
-          const Vec3 slip = contact_slip(view, held[i], end);
-          if (!(slip.norm() > 0.0)) continue;
-          held[i].sliding = true;
-          held[i].slip_direction = slip.normalized();
-          changed = true;
-        }
-        if (changed) end = advanced(tau, &end_info);
-      }
-    }
 
     // Impacts: the pairs that do not rest on each other now, watched for a crossing.
     // Every pair is watched. One that starts overlapping (a drifted contact) is watched for
@@ -520,28 +641,6 @@ void World::advance_island(const Island& island, double h) {
     }
     state = end;
     for (int body : island.members) controllers_[body] = end_info.controller;
-    // Static friction of the held contacts that do not slide, as impulses bounded by mu times
-    // their normal impulse over the stretch (sliding ones had theirs inside the step).
-    if (tau > 0.0 && !held.empty()) {
-      bool any_sticking = false;
-      for (const IslandContact& c : held)
-        any_sticking |= !c.sliding && island.pairs[c.pair].friction > 0.0;
-      if (any_sticking) {
-        const Eigen::VectorXd force = dynamics.contact_forces(start);
-        std::vector<IslandContact> sticking;
-        std::vector<double> impulse;
-        for (std::size_t i = 0; i < held.size(); ++i)
-          if (!held[i].sliding && island.pairs[held[i].pair].friction > 0.0) {
-            sticking.push_back(held[i]);
-            impulse.push_back(force(static_cast<Eigen::Index>(i)) * tau);
-          }
-        apply_island_friction(view, sticking, impulse, state);
-        std::vector<double> loads;
-        for (std::size_t i = 0; i < held.size(); ++i)
-          loads.push_back(force(static_cast<Eigen::Index>(i)) * tau);
-        restore_normal_speeds(view, held, loads, state);
-      }
-    }
     const double t_event = time_ + (h - remaining) + tau;
     remaining = impact ? remaining - tau : 0.0;
     // Integration drift of held contacts is removed by moving the bodies apart along the
