@@ -223,6 +223,51 @@ bool grossly_off(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, const Eigen
   return !complementary(A, b, f, /*slack=*/1e6, /*signs=*/false);
 }
 
+// Where a row is free at w = 0 (degenerate: a contact that carries nothing and does not move
+// away), the LCP has other solutions on the same rows, as many as A's dependent rows allow: a
+// domino's edge on the floor is held by both its ends or by one alone. Frictionless, they all
+// move the bodies alike (A's null space is J's), but friction and the contact forces' split do
+// not: a lopsided split on a symmetric pose (Dantzig's pivots freeing one end by round-off)
+// turns a planar row of dominoes out of its plane. The answer kept is the minimum-norm one over
+// every row at w = 0 (free and clamped), which a symmetric pose makes symmetric; it is kept
+// only where it is a solution (no force negative; for an unsymmetric A, the free rows still
+// not violated).
+void canonical_split(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+                     std::vector<char>& active) {
+  const int n = static_cast<int>(b.size());
+  const double scale_w = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  const double scale_f = scale_w / std::max(A.cwiseAbs().maxCoeff(), 1e-300);
+  const Eigen::VectorXd w = A * f + b;
+  std::vector<int> S;
+  bool degenerate = false;
+  for (int i = 0; i < n; ++i) {
+    const bool carries = f(i) > scale_f;
+    if (carries || std::abs(w(i)) <= scale_w) S.push_back(i);
+    degenerate |= !carries && std::abs(w(i)) <= scale_w && A(i, i) > 0.0;
+  }
+  if (!degenerate) return;
+  const int k = static_cast<int>(S.size());
+  Eigen::MatrixXd As(k, k);
+  Eigen::VectorXd bs(k);
+  for (int r = 0; r < k; ++r) {
+    bs(r) = -b(S[r]);
+    for (int c = 0; c < k; ++c) As(r, c) = A(S[r], S[c]);
+  }
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(1e-10);  // before compute(): Eigen reads it there
+  cod.compute(As);
+  const Eigen::VectorXd g = cod.solve(bs);
+  Eigen::VectorXd split = Eigen::VectorXd::Zero(n);
+  for (int r = 0; r < k; ++r) {
+    if (g(r) < -scale_f) return;
+    split(S[r]) = std::max(g(r), 0.0);
+  }
+  if (!complementary(A, b, split)) return;
+  f = split;
+  active.assign(static_cast<std::size_t>(n), 0);
+  for (int r = 0; r < k; ++r) active[static_cast<std::size_t>(S[r])] = f(S[r]) > 0.0;
+}
+
 // Lemke's complementary pivoting (Cottle, Pang & Stone, "The Linear Complementarity Problem",
 // 4.4), for what Dantzig's method cannot finish: sliding friction makes A unsymmetric, and
 // then principal pivoting may cycle or find its step unbounded although a solution exists.
@@ -322,7 +367,7 @@ bool lemke(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                         std::vector<char>& active, bool ridge_on_stall) {
   bool stalled = !pivot(A, b, f, active);
-  if (!stalled && !grossly_off(A, b, f)) return true;
+  if (!stalled && !grossly_off(A, b, f)) return canonical_split(A, b, f, active), true;
   // Contact matrices are only semidefinite: four coplanar points of a face, or a light body
   // pressed between a heavy one and the floor, give dependent rows, where pivoting can stall or
   // end off complementarity (and its least-squares steps choose among many force distributions
@@ -336,9 +381,10 @@ bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eige
     Eigen::MatrixXd ridged = A;
     ridged.diagonal().array() += 1e-10 * std::max(A.diagonal().cwiseAbs().maxCoeff(), 1e-300);
     std::fill(active.begin(), active.end(), 0);
-    if (pivot(ridged, b, f, active) && !grossly_off(A, b, f)) return true;
+    if (pivot(ridged, b, f, active) && !grossly_off(A, b, f))
+      return canonical_split(A, b, f, active), true;
   }
-  if (lemke(A, b, f, active)) return true;
+  if (lemke(A, b, f, active)) return canonical_split(A, b, f, active), true;
   // No method reached a solution (a friction problem without one: Painlevé's paradox).
   f = Eigen::VectorXd::Zero(b.size());
   projected_gauss_seidel(A, b, f);

@@ -107,6 +107,31 @@ TEST(LcpPivoting, RowsThatASymmetricPoseMakesEqualChangeTogether) {
   EXPECT_EQ(active, (std::vector<char>{1, 1, 0}));
 }
 
+TEST(LcpPivoting, AnEdgeHeldByOneEndOfTwoIsSplitEvenly) {
+  // Rows 0 and 1 are the two ends of a symmetric edge pressed onto a face (equal rows: A is
+  // singular), row 2 a point that separates. f = (1, 0, 0) is a solution — the end left free
+  // has w = 0 — and so is every split with f0 + f1 = 1. The warm start (only row 0 clamped)
+  // ends on the lopsided one; the answer kept is the minimum-norm split over the rows at
+  // w = 0, which the symmetry makes even. Exact in halves.
+  Eigen::MatrixXd A(3, 3);
+  A << 1.0, 1.0, 0.5,  //
+      1.0, 1.0, 0.5,   //
+      0.5, 0.5, 2.0;
+  Eigen::VectorXd b(3);
+  b << -1.0, -1.0, 1.0;
+  Eigen::VectorXd f;
+  std::vector<char> active{1, 0, 0};
+  ASSERT_TRUE(solve_lcp_pivoting(A, b, f, active));
+  EXPECT_NEAR(f(0), 0.5, 1e-15);
+  EXPECT_NEAR(f(1), 0.5, 1e-15);
+  EXPECT_EQ(f(2), 0.0);
+  const Eigen::VectorXd w = A * f + b;
+  EXPECT_NEAR(w(0), 0.0, 1e-15);
+  EXPECT_NEAR(w(1), 0.0, 1e-15);
+  EXPECT_NEAR(w(2), 1.5, 1e-15);
+  EXPECT_EQ(active, (std::vector<char>{1, 1, 0}));
+}
+
 TEST(LcpPivoting, DependentRowsOfAFaceEndComplementary) {
   // The four corners of a standing domino's base on the floor at an impact (dumped from the
   // dominoes, every digit): a rank-3 Delassus matrix, symmetric under swapping corners 0↔2 and
