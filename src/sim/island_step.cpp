@@ -541,35 +541,154 @@ void World::advance_island(const Island& island, double h) {
       // centres plus each one's spin times its reach, the larger of the stretch's two ends
       // (under a constant force a speed is largest at an end), with a 25 % margin for the
       // contact forces' variation within the stretch. The separation is Lipschitz with it.
+      auto omega = [&](const IslandState& s, const Side& side) {
+        if (side.kind != Side::Member) return Vec3(Vec3::Zero());
+        const RigidBody& b = view.member(side.index);
+        const Mat3 R = rotation_of(s[side.index], def_.rotation);
+        return Vec3(R * b.inverse_inertia_body().asDiagonal() * R.transpose() * s[side.index].L);
+      };
       auto body_speed = [&](const IslandState& s, const Side& side) {
         if (side.kind != Side::Member) return std::pair(Vec3(Vec3::Zero()), 0.0);
         const RigidBody& b = view.member(side.index);
-        const Mat3 R = rotation_of(s[side.index], def_.rotation);
-        const Vec3 w = R * b.inverse_inertia_body().asDiagonal() * R.transpose() * s[side.index].L;
         // Turning a ball or a point about its centre does not move its surface.
         const double reach = b.is_sphere() || b.is_particle() ? 0.0 : b.bounding_radius();
-        return std::pair(Vec3(s[side.index].P * b.inverse_mass()), w.norm() * reach);
+        return std::pair(Vec3(s[side.index].P * b.inverse_mass()), omega(s, side).norm() * reach);
+      };
+      auto reach_of = [&](const Side& side) {
+        return side.kind == Side::Member ? view.member(side.index).bounding_radius() : 0.0;
+      };
+      // Two bodies' velocity fields differ by a rigid motion: at any point p, b moves against a
+      // at v_rel(c) + (ω_b − ω_a) × (p − c) from a point c, which for c = x_b is
+      // v_b − v_a − ω_a × (x_b − x_a), and |p − x_b| <= b's reach where b has its closest
+      // point. The closest points differ by the gap d, whose direction turns with a:
+      // |ω_a| d more. The smaller of the two ways round (c = x_a likewise), for two boxes:
+      // dominoes falling against each other turn and move nearly together, and this is a
+      // fraction of what each one's own speed is.
+      const IslandState end_n = normalized(end, def_.rotation);
+      auto relative_bound = [&](const IslandState& s, const IslandPair& p, double d) -> double {
+        if (p.a.kind != Side::Member) return INFINITY;
+        const RigidBody& A = view.member(p.a.index);
+        const RigidBody& B = view.member(p.b.index);
+        if (A.is_sphere() || A.is_particle() || B.is_sphere() || B.is_particle()) return INFINITY;
+        const BodyState& sa = s[p.a.index];
+        const BodyState& sb = s[p.b.index];
+        const Vec3 va = sa.P * A.inverse_mass(), vb = sb.P * B.inverse_mass();
+        const Vec3 wa = omega(s, p.a), wb = omega(s, p.b);
+        const double from_b = (vb - va - wa.cross(sb.x - sa.x)).norm() +
+                              (wb - wa).norm() * B.bounding_radius() + wa.norm() * d;
+        const double from_a = (va - vb - wb.cross(sa.x - sb.x)).norm() +
+                              (wa - wb).norm() * A.bounding_radius() + wb.norm() * d;
+        return std::min(from_b, from_a);
       };
       std::vector<double> bound(watched.size());
       for (std::size_t w = 0; w < watched.size(); ++w) {
         const IslandPair& p = island.pairs[watched[w]];
         double worst = 0.0;
-        for (const IslandState* s : {&start, static_cast<const IslandState*>(&end)}) {
+        // The gap over which the bound is used: at most the larger end's, and what the
+        // advancement lets it close by (the touch distance, or 1e-4 of the size when touching).
+        const double d = std::max({pair_separation(watched[w], start),
+                                   pair_separation(watched[w], end_n), 0.0}) +
+                         std::max(pair_tol[watched[w]].touch_m, 1e-4 * pair_tol[watched[w]].length_m);
+        for (const IslandState* s : {&start, &end_n}) {
           const auto [va, spin_a] = body_speed(*s, p.a);
           const auto [vb, spin_b] = body_speed(*s, p.b);
           // A held pair slides on its contact plane: its gap changes only by the motion along
-          // the normal of its held points, or by turning.
+          // the normal of its held points, or by turning. Turning is the one relative to the
+          // other: a point p moves against the other body at v(c) + (ω_b − ω_a) × (p − c)
+          // from a held point c (rigid kinematics), and |p − c| is at most c's lever plus
+          // the body's reach. Two dominoes that fall leaning on each other turn together:
+          // their relative turning is a fraction of either's.
           double closing = (vb - va).norm();
+          double turning = spin_a + spin_b;
           if (pair_held[watched[w]]) {
             closing = 0.0;
+            double lever = 0.0;
             for (const IslandContact& c : held)
-              if (static_cast<std::size_t>(c.pair) == watched[w])
+              if (static_cast<std::size_t>(c.pair) == watched[w]) {
                 closing = std::max(closing, std::abs(normal_speed(view, c, *s)));
+                const ContactFrame f = contact_frame(view, c, *s);
+                lever = std::max({lever, f.ra.norm() + reach_of(p.a), f.rb.norm() + reach_of(p.b)});
+              }
+            turning = std::min(turning, (omega(*s, p.b) - omega(*s, p.a)).norm() * lever);
           }
-          worst = std::max(worst, closing + spin_a + spin_b);
+          worst = std::max(worst, std::min(closing + turning, relative_bound(*s, p, d)));
         }
         bound[w] = 1.25 * worst + 1e-300;
       }
+      // A held point cannot come back down inside the stretch (its row keeps its normal
+      // acceleration >= 0, and it starts not approaching). The plane of the face a held pair's
+      // normal belongs to has that face's body on one side; for the two to overlap, a point of
+      // the other body must go through it, and that body's lowest point against it is a
+      // vertex. So the pair is crossed no sooner than its lowest vertex that is not held
+      // reaches the plane (a held edge's neighbours turn down only about the edge, no faster
+      // than its far vertices, in proportion). A domino tipping on its edge is watched by its
+      // lifting back edge, millimetres up, not by the held edge at zero.
+      std::vector<std::vector<const IslandContact*>> held_of(island.pairs.size());
+      for (const IslandContact& c : held) held_of[c.pair].push_back(&c);
+      auto free_gap = [&](std::size_t w, const IslandState& ns) -> double {
+        const IslandPair& pr = island.pairs[watched[w]];
+        const std::vector<const IslandContact*>& of = held_of[watched[w]];
+        if (of.empty()) return -INFINITY;
+        const bool face_of_b = of.front()->normal_on == pr.b.index;
+        const Side& going = face_of_b ? pr.a : pr.b;  // the body whose vertices go through
+        const RigidBody& B = *view.side_body(going);
+        if (B.is_sphere() || B.is_particle()) return INFINITY;  // its one point is held
+        const Pose pose = side_pose(view, going, ns);
+        std::vector<ContactFrame> frames;
+        for (const IslandContact* c : of) frames.push_back(contact_frame(view, *c, ns));
+        const Vec3 n = face_of_b ? Vec3(-frames.front().n) : frames.front().n;
+        const Vec3 on_plane = face_of_b ? frames.front().pb : frames.front().pa;
+        const double touch = pair_tol[watched[w]].touch_m;
+        double lowest = INFINITY;
+        for (const Vec3& v : B.vertices()) {
+          const Vec3 p = pose.x + pose.R * v;
+          bool is_held = false;
+          for (const ContactFrame& f : frames)
+            is_held |= (p - (face_of_b ? f.pa : f.pb)).norm() <= touch;
+          if (!is_held) lowest = std::min(lowest, n.dot(p - on_plane));
+        }
+        return lowest - gap_offset[w];
+      };
+      // A floor pair's vertices each come down no faster than their own speed (the larger
+      // end's, with the same margin): a domino pivoting on its edge, or lifting off it, moves
+      // that edge slowly while its top sweeps round at |ω| h. A held vertex is not watched
+      // (above); a sphere's lowest point moves with its centre.
+      std::vector<std::vector<double>> vertex_rate(island.pairs.size());
+      for (std::size_t w = 0; w < watched.size(); ++w) {
+        const IslandPair& pr = island.pairs[watched[w]];
+        const RigidBody& B = view.member(pr.b.index);
+        if (pr.a.kind != Side::Floor || B.is_sphere() || B.is_particle()) continue;
+        std::vector<double>& rate = vertex_rate[watched[w]];
+        rate.assign(B.vertices().size(), 0.0);
+        for (const IslandState* st : {&start, &end_n}) {
+          const Vec3 v = (*st)[pr.b.index].P * B.inverse_mass();
+          const Vec3 om = omega(*st, pr.b);
+          const Mat3 R = rotation_of((*st)[pr.b.index], def_.rotation);
+          for (std::size_t i = 0; i < rate.size(); ++i)
+            rate[i] = std::max(rate[i], (v + om.cross(R * B.vertices()[i])).norm());
+        }
+        for (double& r : rate) r = 1.25 * r + 1e-300;
+      }
+      auto floor_time = [&](std::size_t w, const IslandState& ns, double reach) {
+        const IslandPair& pr = island.pairs[watched[w]];
+        const RigidBody& B = view.member(pr.b.index);
+        const std::vector<double>& rate = vertex_rate[watched[w]];
+        const Pose pb = pose_of(ns[pr.b.index]);
+        double soonest = INFINITY;
+        for (std::size_t i = 0; i < rate.size(); ++i) {
+          bool is_held = false;
+          for (const IslandContact* c : held_of[watched[w]])
+            is_held |= c->feature == static_cast<std::uint32_t>(i);
+          if (is_held) continue;
+          const double height = pb.x.y() + pb.R.row(1).dot(B.vertices()[i]) -
+                                def_.floor->height - gap_offset[w];
+          soonest = std::min(soonest, (std::max(height, 0.0) + reach) / rate[i]);
+        }
+        return soonest;
+      };
+      std::vector<double> free_a(watched.size()), free_b(watched.size());
+      IslandState n_a = normalized(start, def_.rotation);
+      for (std::size_t w = 0; w < watched.size(); ++w) free_a[w] = free_gap(w, n_a);
       // Conservative advancement: no watched pair can close its gap (plus the touch distance)
       // before t_a + (gap + touch) / bound; evaluate there, until one is found across.
       double t_a = 0.0;
@@ -594,7 +713,10 @@ void World::advance_island(const Island& island, double h) {
           const Tol& tol = pair_tol[watched[w]];
           const double reach =
               pair_touching[watched[w]] ? std::max(tol.touch_m, 1e-4 * tol.length_m) : tol.touch_m;
-          safe = std::min(safe, (std::max(g_a[w], 0.0) + reach) / bound[w]);
+          const double sw = vertex_rate[watched[w]].empty()
+                                ? (std::max({g_a[w], free_a[w], 0.0}) + reach) / bound[w]
+                                : floor_time(w, n_a, reach);
+          safe = std::min(safe, sw);
         }
         t_b = std::min(remaining, t_a + std::max(safe, 1e3 * min_span));
         s_b = t_b >= remaining ? end : advanced(t_b, nullptr);
@@ -602,6 +724,7 @@ void World::advance_island(const Island& island, double h) {
         crossed.clear();
         for (std::size_t w = 0; w < watched.size(); ++w) {
           g_b[w] = pair_gap(w, nb);
+          free_b[w] = free_gap(w, nb);
           const double noise =
               32.0 * std::numeric_limits<double>::epsilon() *
               (noise_scale + s_b[island.pairs[watched[w]].b.index].x.cwiseAbs().maxCoeff());
@@ -610,6 +733,8 @@ void World::advance_island(const Island& island, double h) {
         if (!crossed.empty() || t_b >= remaining) break;
         t_a = t_b;
         g_a = g_b;
+        free_a = free_b;
+        n_a = nb;
       }
       if (!crossed.empty()) {
         impact = true;
