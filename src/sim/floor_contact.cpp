@@ -100,8 +100,9 @@ void reduce_to_support(const RigidBody& b, const std::vector<int>& candidates, C
 }
 
 ContactSet touching_vertices(const RigidBody& b, double floor_height, double touch_m,
-                             double rest_speed) {
+                             double rest_speed, Clearance* clearance) {
   ContactSet c;
+  if (clearance) *clearance = Clearance{};
   c.floor_height = floor_height;
   const Vec3 omega = b.angular_velocity();
   const int n = static_cast<int>(b.vertices().size());
@@ -109,9 +110,16 @@ ContactSet touching_vertices(const RigidBody& b, double floor_height, double tou
   int found = 0;
   std::vector<int> many;  // only when a flat hull face puts more than kMaxPoints on the floor
   for (int i = 0; i < n; ++i) {
-    if (vertex_gap(b, b.state, i, floor_height) > touch_m) continue;
+    const double gap = vertex_gap(b, b.state, i, floor_height);
+    if (gap > touch_m) {
+      if (clearance) clearance->lowest_m = std::min(clearance->lowest_m, gap);
+      continue;
+    }
     const Vec3 r = b.vertex_offset(b.state.R, i);
-    if (std::abs(point_velocity(b, omega, r).y()) > rest_speed) continue;
+    if (std::abs(point_velocity(b, omega, r).y()) > rest_speed) {
+      if (clearance) ++clearance->fast;
+      continue;
+    }
     if (found < ContactSet::kMaxPoints) {
       first[found++] = i;
     } else {

@@ -1,6 +1,7 @@
 #pragma once
 // Geometry and impulses of one body against the floor plane y = height (normal +y).
 
+#include <cmath>
 #include <vector>
 
 #include "dynamics.hpp"
@@ -38,11 +39,18 @@ void reduce_to_support(const RigidBody& b, const std::vector<int>& candidates, C
 /// The fastest approach speed (> 0) of the points of `c`, 0 when none approaches.
 double approach_speed(const RigidBody& b, const ContactSet& c);
 
+/// How far the vertices that do not touch are from the floor, and how many touch faster than
+/// the rest speed, as touching_vertices finds them.
+struct Clearance {
+  double lowest_m = INFINITY;  ///< the lowest gap beyond the touch distance
+  int fast = 0;                ///< touching vertices left out for their speed
+};
+
 /// Vertices of the body's current state that touch the floor (gap <= touch_m); with a finite
 /// `rest_speed`, only those whose normal speed is at most that (resting candidates). More than
 /// ContactSet::kMaxPoints are reduced to their support polygon (reduce_to_support).
 ContactSet touching_vertices(const RigidBody& b, double floor_height, double touch_m,
-                             double rest_speed);
+                             double rest_speed, Clearance* clearance = nullptr);
 
 /// The points of `c` that do not separate (normal speed <= hold_speed): those the floor holds.
 ContactSet held_points(const RigidBody& b, const ContactSet& c, double hold_speed);

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "collide.hpp"
@@ -44,6 +45,89 @@ double max_turn_per_step(Integrator i) {
 bool finite(const BodyState& s) {
   return s.x.allFinite() && s.P.allFinite() && s.L.allFinite() && s.q.coeffs().allFinite() &&
          s.R.allFinite();
+}
+
+// Where a vertex dips in and out of the floor inside a stretch whose end shows none below:
+// conservative advancement, as for islands. The body is evaluated at t + s until a vertex is
+// found below (`crossing`, and the bracket [t_a, t_b] in `dip`) or the stretch's end is reached
+// (`crossing` empty), s being the soonest a vertex not held could be a reach below the floor.
+// Each vertex's height is watched two ways, and the later of the two is taken: its speed
+// |v + ω × r| bounds how fast it comes down, or its vertical velocity now and its acceleration
+// |a + α × r + ω × (ω × r)| bound a parabola below its path (each the larger of the stretch's
+// two ends, +25 %). The second keeps a vertex sliding along just above the floor (a rocking
+// L-shape's, at 1.5 m/s, microns up) from cutting the step into a hundred pieces. The reach is
+// the touch distance, or 1e-4 of the size for a vertex touching at the start (one lifting off:
+// all it could miss is a dip shallower than that, invisible). Held points cannot go in: their
+// rows keep them. Out of line: the step of a body resting on a face never needs it.
+struct Dip {
+  double t_a = 0.0, t_b = 0.0;
+  std::optional<BodyState> a, b;  ///< the states at t_a (none: the start) and t_b
+  StepInfo info_a;
+};
+template <class Advance>
+[[gnu::noinline]] void find_dip(const BodyDynamics& dynamics, const ContactSet& held,
+                                bool face_held, const BodyState& start, const BodyState& end,
+                                double remaining, double floor_y, const Tol& tol,
+                                const Advance& advanced, std::vector<int>& crossing, Dip& dip) {
+  const RigidBody& body = dynamics.body();
+  const int nv = static_cast<int>(body.vertices().size());
+  const bool turns = !body.is_particle() && !body.is_sphere();  // a ball's turning lowers nothing
+  const auto held_points = held.indices();
+  auto spin = [&](const BodyState& st) {
+    return turns ? Vec3(st.R * body.inverse_inertia_body().asDiagonal() * st.R.transpose() * st.L)
+                 : Vec3(Vec3::Zero());
+  };
+  std::vector<double> rate(static_cast<std::size_t>(nv), 0.0), accel(rate.size(), 0.0),
+      reach(rate.size());
+  for (const BodyState* st : {&start, &end}) {
+    const Rate k = dynamics(*st);
+    const Vec3 v = st->P * body.inverse_mass(), w = spin(*st);
+    const Vec3 a = k.F * body.inverse_mass();
+    const Vec3 alpha =
+        turns ? Vec3(st->R * body.inverse_inertia_body().asDiagonal() * st->R.transpose() *
+                     (k.tau - w.cross(st->L)))
+              : Vec3(Vec3::Zero());
+    for (int i = 0; i < nv; ++i) {
+      const Vec3 r = body.vertex_offset(st->R, i);
+      rate[i] = std::max(rate[i], (v + w.cross(r)).norm());
+      accel[i] = std::max(accel[i], (a + alpha.cross(r) + w.cross(w.cross(r))).norm());
+    }
+  }
+  for (int i = 0; i < nv; ++i) {
+    rate[i] = 1.25 * rate[i] + 1e-300;
+    accel[i] *= 1.25;
+    const bool touching = vertex_gap(body, start, i, floor_y) <= tol.touch_m;
+    reach[i] = touching ? std::max(tol.touch_m, 1e-4 * tol.length_m) : tol.touch_m;
+    if ((touching && face_held) ||
+        std::find(held_points.begin(), held_points.end(), i) != held_points.end())
+      rate[i] = 0.0;
+  }
+  const BodyState* at = &start;
+  for (int iter = 0; iter < 10000; ++iter) {
+    const Vec3 v = at->P * body.inverse_mass(), w = spin(*at);
+    double safe = INFINITY;
+    for (int i = 0; i < nv; ++i) {
+      if (!(rate[i] > 0.0)) continue;
+      const double depth = std::max(vertex_gap(body, *at, i, floor_y), 0.0) + reach[i];
+      // The parabola depth + u s - A s² / 2 reaches zero at s = (u + sqrt(u² + 2 A depth)) / A.
+      const double u = (v + w.cross(body.vertex_offset(at->R, i))).y();
+      const double A = accel[i];
+      const double parabola = A > 0.0 ? (u + std::sqrt(u * u + 2.0 * A * depth)) / A
+                              : u < 0.0 ? depth / -u
+                                        : INFINITY;
+      safe = std::min(safe, std::max(depth / rate[i], parabola));
+    }
+    const double next = dip.t_a + std::max(safe, 1e3 * tol.toi_time_s);
+    if (next >= remaining) return;
+    StepInfo info;
+    dip.b = advanced(next, &info);
+    vertices_below(body, *dip.b, floor_y, held, crossing);
+    if (!crossing.empty()) {
+      dip.t_b = next;
+      return;
+    }
+    dip.t_a = next, dip.a = dip.b, dip.info_a = info, at = &*dip.a;
+  }
 }
 
 }  // namespace
@@ -393,7 +477,9 @@ void World::advance_body(std::size_t index, double h) {
   while (remaining > 0.0) {
     // Resting contacts for this stretch: touching points with a small normal speed. Any that
     // still approach are stopped first (an inelastic micro-impact), then held by contact forces.
-    ContactSet resting = touching_vertices(b, floor_y, tol.touch_m, rest_speed);
+    Clearance clear;  // of the stretch's start (impulses change no positions)
+    ContactSet resting = touching_vertices(b, floor_y, tol.touch_m, rest_speed, &clear);
+    bool face_held = clear.fast == 0;
     if (resting.count > 0) {
       contact = true;
       // Impulses change the kinetic energy only: the energy they return is the gain. A point
@@ -406,7 +492,14 @@ void World::advance_body(std::size_t index, double h) {
             std::max(stats_.max_energy_gain_J, resolve_impact(b, resting, INFINITY, mu, impulse));
       }
       // Only points that do not move away are held: a force at a separating point would work.
+      const int candidates = resting.count;
       resting = held_points(b, resting, tol.hold_speed_mps);
+      // Every touching vertex is then held, or on a hull face with them (left out by
+      // reduce_to_support): inside their support polygon, where it cannot go lower than they,
+      // or beyond its eighth corner, a face tilting about its held corners; the end of the
+      // stretch finds such a vertex below, and a dip of it in and out of the floor is left
+      // unwatched (its face turning back within the step).
+      face_held = clear.fast == 0 && resting.count == candidates;
     }
     if (mu > 0.0) classify_sliding(b, resting, mu, def_.gravity.norm() * remaining);
     const BodyDynamics dynamics(b, def_.rotation, forces, resting.count > 0 ? &resting : nullptr,
@@ -422,20 +515,60 @@ void World::advance_body(std::size_t index, double h) {
     BodyState end = advanced(tau, &end_info);
     std::vector<int>& crossing = crossing_;
     vertices_below(b, end, floor_y, resting, crossing);
+    // A vertex can also dip in and out inside the stretch: a fast-turning body's corner
+    // sweeping past the bottom, which the stretch's end does not see. Conservative advancement,
+    // as for islands: each vertex not held comes down no faster than its own speed |v + ω × r|
+    // (the larger end's, +25 %), so the body is evaluated at t + (height + reach) / speed until
+    // a vertex is found below or the end is reached. The reach is the touch distance, or 1e-4
+    // of the size for a vertex touching at the start (one that lifts off: what it could miss is
+    // a dip shallower than that, invisible). Held points cannot go in (their rows keep them).
+    // A body resting or sliding on a face has its other vertices far up: the end at once.
+    double t_a = 0.0, t_b = remaining;
+    const BodyState* s_a = &start;
+    const BodyState* s_b = &end;
+    // First at once for the whole body, which is how a body resting or sliding on a face, its
+    // other vertices far up, pays nothing for it: its fastest point is slower than
+    // |v| + |ω| r <= sqrt(2 (|P|² / m² + |L|² r² / I_min²)), squared here without a root.
+    bool may_dip = false;
+    if (crossing.empty() && !b.vertices().empty()) {
+      const double spin = !b.is_particle() && !b.is_sphere() ? b.inverse_inertia_body().maxCoeff() * b.bounding_radius() : 0.0;
+      const double im = b.inverse_mass();
+      const double fastest2 =
+          2.0 * (std::max(start.P.squaredNorm(), end.P.squaredNorm()) * im * im +
+                 std::max(start.L.squaredNorm(), end.L.squaredNorm()) * spin * spin);
+      // The lowest vertex beyond the touch distance, or zero where one touching is not held.
+      const double lowest = face_held ? clear.lowest_m : 0.0;
+      const double reach = lowest + tol.touch_m, travel = 1.25 * remaining;
+      may_dip = reach * reach < travel * travel * fastest2;
+    }
+    std::optional<Dip> dip;
+    if (may_dip) {
+      dip.emplace();
+      find_dip(dynamics, resting, face_held, start, end, remaining, floor_y, tol, advanced, crossing,
+               *dip);
+      if (!crossing.empty()) {
+        t_a = dip->t_a, t_b = dip->t_b;
+        if (dip->a) s_a = &*dip->a;
+        s_b = &*dip->b;
+      }
+    }
     const bool impact = !crossing.empty();
     if (impact) {
       // Time of impact by the Illinois variant of regula falsi on the lowest crossing vertex's
       // gap, integrating from the stretch's start with the step's own integrator. Bracket
       // [lo, hi]: gap(lo) >= 0 > gap(hi), so a crossing lies inside. Stops when the bracket is
       // toi_time_s wide: a vertex is then within speed·toi_time_s (1e-10 ℓ below 100 u) of it.
-      double lo = 0.0, hi = remaining;
-      // The gap is that of the vertices found below the plane at the end (a touching vertex that
-      // moves away must not stop the search at once).
-      double g_lo = std::max(min_gap(b, start, floor_y, crossing), 0.0);
-      double g_hi = min_gap(b, end, floor_y, crossing);
-      BodyState at_lo = start;
+      double lo = t_a, hi = t_b;
+      // The gap is that of the vertices found below the plane at the bracket's end (a touching
+      // vertex that moves away must not stop the search at once).
+      double g_lo = std::max(min_gap(b, *s_a, floor_y, crossing), 0.0);
+      double g_hi = min_gap(b, *s_b, floor_y, crossing);
+      BodyState at_lo = *s_a;
       StepInfo lo_info;
-      lo_info.controller = controllers_[index];
+      if (dip && dip->a)
+        lo_info = dip->info_a;
+      else
+        lo_info.controller = controllers_[index];
       // A computed gap is exact only to round-off of the positions it comes from; a vertex that
       // just left the plane (a gap of ~1e-16 and a slow separating speed) can read as a hair
       // below it a moment later, which would put the impact at the stretch's start and find it
