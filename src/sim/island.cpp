@@ -1,6 +1,8 @@
 #include "island.hpp"
 
 #include <Eigen/QR>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 
@@ -934,20 +936,119 @@ void restore_normal_speeds(const IslandView& v, const std::vector<IslandContact>
   resolve_island_impacts(v, held, s, INFINITY, true, unused);
 }
 
+namespace {
+
+// The equilibrium rows of an island: for every member its force and torque balance, J β = −W,
+// where column c of J is the wrench of a unit force along dir[c] at contact owner[c] (on b, and
+// its opposite on a) and W the members' weights.
+struct Balance {
+  Eigen::SparseMatrix<double> J;
+  Eigen::VectorXd W;
+};
+Balance balance_rows(const IslandView& v, const Frames& f, const std::vector<Vec3>& dir,
+                     const std::vector<int>& owner) {
+  const int members = static_cast<int>(v.island->members.size());
+  Balance out;
+  out.W = Eigen::VectorXd::Zero(6 * members);
+  for (int k = 0; k < members; ++k) out.W.segment<3>(6 * k) = v.member(k).mass() * v.forces->gravity;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t c = 0; c < dir.size(); ++c) {
+    const int i = owner[c];
+    for (int side = 0; side < 2; ++side) {
+      const SideGeometry& g = side == 0 ? f.a[i] : f.b[i];
+      if (g.member < 0) continue;
+      const double sign = side == 0 ? -1.0 : 1.0;
+      const Vec3 torque = g.lever.cross(dir[c]);
+      for (int r = 0; r < 3; ++r) {
+        entries.emplace_back(6 * g.member + r, static_cast<int>(c), sign * dir[c](r));
+        if (!v.member(g.member).is_particle())
+          entries.emplace_back(6 * g.member + 3 + r, static_cast<int>(c), sign * torque(r));
+      }
+    }
+  }
+  out.J.resize(6 * members, static_cast<Eigen::Index>(dir.size()));
+  out.J.setFromTriplets(entries.begin(), entries.end());  // duplicates (a == b) are summed
+  return out;
+}
+
+// The least-norm forces β = Jᵀ y, (J Jᵀ) y = −W, over each contact's normal (`with_friction`
+// false) or its normal and two tangents. Least-norm forces pull as well as push (two boxes side
+// by side trade a couple that unloads their supports), so a contact whose normal force comes
+// out negative is left out and the rest solved again, a few rounds (an active-set search that
+// only ever drops). The answer is then pulled into the cones (a normal of round-off size below
+// zero to zero, a tangential part to the pyramid's inscribed circle, mu cos 22.5° times the
+// normal, so that it is one the pyramid test below also accepts): balanced when the residual
+// is round-off. Sparse (each column touches two members), so an island of hundreds of resting
+// bodies costs a few sparse factorisations instead of an active-set search over thousands of
+// dense columns.
+bool least_norm_balances(const IslandView& v, const Frames& f, const std::vector<double>& mu,
+                         bool with_friction) {
+  const int n = static_cast<int>(f.frame.size());
+  std::vector<Vec3> dir;
+  std::vector<int> owner;
+  for (int i = 0; i < n; ++i) {
+    dir.push_back(f.frame[i].n), owner.push_back(i);
+    if (!with_friction || mu[i] <= 0.0) continue;
+    Vec3 t1, t2;
+    tangents(f.frame[i].n, t1, t2);
+    dir.push_back(t1), owner.push_back(i);
+    dir.push_back(t2), owner.push_back(i);
+  }
+  const Balance rows = balance_rows(v, f, dir, owner);
+  const int u = static_cast<int>(dir.size());
+  Eigen::VectorXd keep = Eigen::VectorXd::Ones(u);  // 0: the column's contact is left out
+  Eigen::VectorXd beta;
+  for (int round = 0; round < 6; ++round) {
+    const Eigen::SparseMatrix<double> Jk = rows.J * keep.asDiagonal();
+    Eigen::SparseMatrix<double> JJt = Jk * Jk.transpose();
+    double diag = 0.0;
+    for (int k = 0; k < JJt.rows(); ++k) diag = std::max(diag, JJt.coeff(k, k));
+    // A direction no contact can push (a frictionless box's spin about the normal) is
+    // singular: a ridge of round-off size keeps the factorisation going; the residual judges.
+    for (int k = 0; k < JJt.rows(); ++k) JJt.coeffRef(k, k) += 1e-13 * diag;
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(JJt);
+    if (ldlt.info() != Eigen::Success) return false;
+    beta = Jk.transpose() * ldlt.solve(-rows.W);
+    const double small = 1e-9 * beta.cwiseAbs().maxCoeff();
+    bool dropped = false;
+    for (int c = 0; c < u; ++c)
+      if (dir[c] == f.frame[owner[c]].n && beta(c) < -small)
+        for (int d = c; d < u && owner[d] == owner[c]; ++d) keep(d) = 0.0, dropped = true;
+    if (!dropped) break;
+  }
+  for (int c = 0; c < u;) {
+    const int i = owner[c];
+    const int width = with_friction && mu[i] > 0.0 ? 3 : 1;
+    const double normal = std::max(beta(c), 0.0);
+    beta(c) = normal;
+    if (width == 3) {
+      const double slip = beta.segment<2>(c + 1).norm(), cap = mu[i] * std::cos(kPi / 8.0) * normal;
+      if (slip > cap) beta.segment<2>(c + 1) *= cap / slip;
+    }
+    c += width;
+  }
+  return (rows.J * beta + rows.W).norm() <= 1e-9 * rows.W.norm();
+}
+
+}  // namespace
+
 bool island_in_equilibrium(const IslandView& v, const std::vector<IslandContact>& contacts,
                            const IslandState& s) {
   const int n = static_cast<int>(contacts.size());
-  const int members = static_cast<int>(s.size());
   if (n == 0) return false;
   const Frames f = frames_of(v, contacts, s);
+  std::vector<double> mu(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) mu[i] = v.island->pairs[contacts[i].pair].friction;
+  // The quick sufficient tests first: the least-norm normal forces (a stack, a pyramid), then
+  // with friction (a box on a ramp). Where both leave a residual, the exact search decides.
+  if (least_norm_balances(v, f, mu, false) || least_norm_balances(v, f, mu, true)) return true;
   // Each contact force as a non-negative combination of directions: the normal alone, or with
   // friction the 8 edges n + mu (cos k45° t1 + sin k45° t2) of the pyramid inscribed in its
   // cone (it holds all but 8 % of the cone, cos 22.5°): conservative, never a force outside.
   std::vector<Vec3> dir;
   std::vector<int> owner;
   for (int i = 0; i < n; ++i) {
-    const double mu = v.island->pairs[contacts[i].pair].friction;
-    if (mu <= 0.0) {
+    if (mu[i] <= 0.0) {
       dir.push_back(f.frame[i].n), owner.push_back(i);
       continue;
     }
@@ -955,26 +1056,14 @@ bool island_in_equilibrium(const IslandView& v, const std::vector<IslandContact>
     tangents(f.frame[i].n, t1, t2);
     for (int k = 0; k < 8; ++k) {
       const double a = k * (kPi / 4.0);
-      dir.push_back(f.frame[i].n + mu * (std::cos(a) * t1 + std::sin(a) * t2));
+      dir.push_back(f.frame[i].n + mu[i] * (std::cos(a) * t1 + std::sin(a) * t2));
       owner.push_back(i);
     }
   }
   const int u = static_cast<int>(dir.size());
-  // Rows: every member's force and torque balance, J β = −W.
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6 * members, u);
-  Eigen::VectorXd W = Eigen::VectorXd::Zero(6 * members);
-  for (int k = 0; k < members; ++k) W.segment<3>(6 * k) = v.member(k).mass() * v.forces->gravity;
-  for (int c = 0; c < u; ++c) {
-    const int i = owner[c];
-    for (int side = 0; side < 2; ++side) {
-      const SideGeometry& g = side == 0 ? f.a[i] : f.b[i];
-      if (g.member < 0) continue;
-      const double sign = side == 0 ? -1.0 : 1.0;
-      J.block<3, 1>(6 * g.member, c) += sign * dir[c];
-      if (!v.member(g.member).is_particle())
-        J.block<3, 1>(6 * g.member + 3, c) += sign * g.lever.cross(dir[c]);
-    }
-  }
+  const Balance rows = balance_rows(v, f, dir, owner);
+  const Eigen::MatrixXd J(rows.J);
+  const Eigen::VectorXd& W = rows.W;
   // Non-negative least squares (Lawson & Hanson, "Solving Least Squares Problems", ch. 23):
   // β >= 0 minimising |J β + W|. Balanced when the residual is round-off (1e-9 of the weights).
   const Eigen::VectorXd b = -W;

@@ -38,6 +38,36 @@ TEST(Stack, TenBoxesAtRestStayForAMinute) {
     EXPECT_LT((w.bodies()[k].state.x - def.bodies[k].position).norm(), 1e-9 * s) << k;
 }
 
+TEST(Stack, APyramidOfTwentyRowsSleepsAtOnceAndStays) {
+  // Issue 21's standing pyramid: 210 unit cubes of 1 kg, row r holding 20 − r at x = i −
+  // (19 − r)/2, exactly touching (each box on the halves of two below, beside its neighbours:
+  // 2 360 contact points), friction 0.5, restitution 0. It is in equilibrium on its normal
+  // forces alone, and finding that must not cost an active-set search over the thousands of
+  // friction-pyramid columns: it sleeps after one step, no box moves, nothing is deep.
+  WorldDef def = test::world_def(Integrator::Rk4, 0.002, /*floor=*/true);
+  def.floor->friction = 0.5;
+  const int rows = 20;
+  for (int r = 0; r < rows; ++r)
+    for (int i = 0; i < rows - r; ++i) {
+      BodyDef b = test::box_def(Vec3::Ones(), 1.0,
+                                Vec3(i - 0.5 * (rows - r - 1), 0.5 + r, 0.0));
+      b.name = "box_" + std::to_string(r) + "_" + std::to_string(i);
+      b.friction = 0.5;
+      b.restitution = 0.0;
+      def.bodies.push_back(b);
+    }
+  World w(def);
+  w.step();
+  for (const RigidBody& b : w.bodies()) EXPECT_TRUE(b.at_rest) << b.name();
+  while (w.time() < 2.0) w.step();
+  for (std::size_t k = 0; k < def.bodies.size(); ++k) {
+    EXPECT_EQ(w.bodies()[k].state.x, def.bodies[k].position) << def.bodies[k].name;
+    EXPECT_TRUE(w.bodies()[k].at_rest) << def.bodies[k].name;
+  }
+  EXPECT_EQ(w.contact_stats().impacts, 0L);
+  EXPECT_EQ(w.contact_stats().deepest_penetration_m, 0.0);
+}
+
 TEST(Stack, DroppedFromMillimetreGapsSettlesStraightAndSpinFree) {
   const double s = 0.2;
   const WorldDef def = stack(5, s, 1e-3);
@@ -113,7 +143,7 @@ TEST(Friction, SlidesDownARampSteeperThanAtanMuAtGTimesSinMinusMuCos) {
   EXPECT_NEAR((b.state.x - start).dot(down), 0.5 * a * 0.25, 1e-12);
   EXPECT_NEAR((b.state.x - start).dot(n), 0.0, 1e-12);
   EXPECT_LT(b.angular_velocity().norm(), 1e-12);
-  EXPECT_EQ(w.contact_stats().impacts, 0);
+  EXPECT_EQ(w.contact_stats().impacts, 0L);
 }
 
 // A ball of radius r launched sliding at v0 without spin, on the floor (`on_table` false) or on
