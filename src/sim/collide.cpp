@@ -28,6 +28,7 @@ std::vector<Vec3> world_vertices(const RigidBody& b, const Pose& p) {
 Manifold swapped(Manifold m) {
   m.normal = -m.normal;
   m.normal_of_b = !m.normal_of_b;
+  std::swap(m.edge_a, m.edge_b);
   for (int i = 0; i < m.count; ++i) std::swap(m.points[i].on_a, m.points[i].on_b);
   return m;
 }
@@ -354,6 +355,9 @@ Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const
     closest_between_segments(a0, a1, b0, b1, on_a, on_b);
     Manifold m;
     m.normal = ee.axis;
+    m.edges = true;
+    m.edge_a = (a1 - a0).normalized();
+    m.edge_b = (b1 - b0).normalized();
     m.count = 1;
     m.points[0] = {on_a, on_b, ee.separation,
                    0x40000000u | (static_cast<std::uint32_t>(ee.edge_a) << 8) |

@@ -43,6 +43,10 @@ struct Manifold {
   /// The normal is b's (its reference face, or the polyhedron a round a touches): it turns
   /// with b. Otherwise it is a's, or (round against round) the line of centres.
   bool normal_of_b = false;
+  /// An edge of a against an edge of b (one point): the normal is their cross product, and
+  /// turns with both. `edge_a`, `edge_b`: their world directions.
+  bool edges = false;
+  Vec3 edge_a = Vec3::Zero(), edge_b = Vec3::Zero();
   int count = 0;
   ManifoldPoint points[kMaxPoints];
 };

@@ -173,6 +173,14 @@ ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const Is
   } else {
     f.n = c.normal_local;
   }
+  if (c.edge_edge) {
+    // Two edges: the line between them is square to both, as they turn now. (The separating
+    // axis test never picks edges closer to parallel than its face axes allow.)
+    f.ea = Ra * c.edge_a_local;
+    f.eb = Rb * c.edge_b_local;
+    const Vec3 u = f.ea.cross(f.eb);
+    if (u.norm() > 1e-9) f.n = c.edge_sign * u.normalized();
+  }
   // Side a.
   if (round_side(A)) {
     f.ra = c.radius_a * f.n;
@@ -197,7 +205,7 @@ ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const Is
   // misses the turn of the plane under the sliding point (ṅ·(p_b − p_a), 1e-4 m/s for a
   // domino's edge sliding down a turning neighbour: a held contact sinking in as an impact a
   // step). The separation, n·(p_b − p_a), is the same either way.
-  if (!(round_side(A) && round_side(B)) && c.normal_on >= 0) {
+  if (!(round_side(A) && round_side(B)) && c.normal_on >= 0 && !c.edge_edge) {
     if (c.normal_on == p.b.index) {
       f.pb = f.pa + f.n * f.n.dot(f.pb - f.pa);
       f.rb = f.pb - xb;
@@ -249,6 +257,25 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
   // The force direction of each contact: the normal, and against the slip for a sliding one
   // (Coulomb kinetic friction proportional to the normal force: Baraff's dynamic friction,
   // which makes A unsymmetric).
+  // How fast contact i's frame turns: a face's normal (and its tangents) with the face's body;
+  // the normal of two edges, ±(e_a × e_b)/|e_a × e_b|, with both: ṅ from ė = ω × e on each
+  // side, and the frame turns at n × ṅ (the least turn that carries n along). None: fixed.
+  auto frame_turn = [&](int i) -> Vec3 {
+    const IslandContact& c = held[static_cast<std::size_t>(i)];
+    if (c.edge_edge) {
+      const ContactFrame& fr = f.frame[i];
+      const Vec3 wa = f.a[i].member >= 0 ? k[f.a[i].member].omega : Vec3(Vec3::Zero());
+      const Vec3 wb = k[f.b[i].member].omega;
+      const Vec3 u = fr.ea.cross(fr.eb);
+      const double len = u.norm();
+      if (len > 1e-9) {
+        const Vec3 du = wa.cross(fr.ea).cross(fr.eb) + fr.ea.cross(wb.cross(fr.eb));
+        const Vec3 ndot = c.edge_sign * (du - (u / len) * (u / len).dot(du)) / len;
+        return fr.n.cross(ndot);
+      }
+    }
+    return c.normal_on >= 0 ? k[c.normal_on].omega : Vec3(Vec3::Zero());
+  };
   std::vector<Vec3> dir(static_cast<std::size_t>(n));
   Eigen::VectorXd b(n);
   std::vector<int> sticking;
@@ -273,8 +300,8 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
       const double L = (c.pb - c.pa).norm() + c.ra.norm() + c.rb.norm();
       const Vec3 across = dvel - c.n * c.n.dot(dvel);
       if (L > 0.0) bi += across.squaredNorm() / L;
-    } else if (held[i].normal_on >= 0) {
-      const Vec3 ndot = k[held[i].normal_on].omega.cross(c.n);
+    } else {
+      const Vec3 ndot = frame_turn(i).cross(c.n);
       bi += 2.0 * ndot.dot(dvel);
     }
     b(i) = bi;
@@ -342,9 +369,9 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
       const IslandPair& p = v_.island->pairs[held[i].pair];
       const bool round_a = round_side(v_.side_body(p.a)), round_b = round_side(v_.side_body(p.b));
       double bi = tr.dot(tangential_acc(f.b[i], round_b) - tangential_acc(f.a[i], round_a));
-      if (held[i].normal_on >= 0) {
+      if (held[i].normal_on >= 0 || held[i].edge_edge) {
         const Vec3 dvel = point_vel(f.b[i], f.b[i].lever) - point_vel(f.a[i], f.a[i].lever);
-        bi += k[held[i].normal_on].omega.cross(tr).dot(dvel);
+        bi += frame_turn(i).cross(tr).dot(dvel);
       }
       bt(r) = bi;
     }

@@ -38,6 +38,13 @@ struct IslandContact {
   double radius_a = 0.0, radius_b = 0.0;
   Vec3 normal_local;        ///< in the frame of `normal_on` (a member), else world
   int normal_on = -1;       ///< local member index the normal turns with, -1: fixed in the world
+  /// An edge against an edge: the normal is ±(edge_a × edge_b) of the edges as they turn now
+  /// (body frames of a and b; a fixed side's own frame), the sign `edge_sign`. Taken as a's
+  /// face normal instead, a held edge sliding along a turning edge sinks in (a die resting on
+  /// another's edge: an impact every 16 µs).
+  bool edge_edge = false;
+  Vec3 edge_a_local = Vec3::Zero(), edge_b_local = Vec3::Zero();
+  double edge_sign = 1.0;
   bool sliding = false;     ///< kinetic friction inside the derivative
   /// Where a contact starts sliding from rest (its slip is still zero), the way it will slide.
   Vec3 slip_direction = Vec3::Zero();
@@ -57,6 +64,7 @@ struct Island {
 /// each side's centre of mass (zero for static sides) and the world points.
 struct ContactFrame {
   Vec3 n, ra, rb, pa, pb;
+  Vec3 ea = Vec3::Zero(), eb = Vec3::Zero();  ///< an edge–edge contact's edges (world)
 };
 
 /// The stacked state of an island's members.

@@ -244,23 +244,40 @@ std::vector<Island> World::find_islands(double h) {
   }
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
-  std::vector<std::pair<int, int>> candidates;  // (i, j), i < j, bounds overlapping
+  // Broad phase: sort and sweep along x. The bodies in the order of their bounds' low x (ties
+  // by index); each is compared only with those after it that start before it ends. The pairs
+  // whose bounds overlap are then put in (i, j) order, so what follows never depends on where
+  // the bodies are: n log n plus the pairs that overlap in x, instead of every pair.
+  std::vector<int> by_x(n);
+  std::iota(by_x.begin(), by_x.end(), 0);
+  std::sort(by_x.begin(), by_x.end(), [&](int i, int j) {
+    return bounds[i].lo.x() < bounds[j].lo.x() || (bounds[i].lo.x() == bounds[j].lo.x() && i < j);
+  });
+  std::vector<std::pair<int, int>> overlapping;  // (i, j), i < j, bounds overlapping
+  for (std::size_t a = 0; a < n; ++a) {
+    const int i = by_x[a];
+    for (std::size_t b = a + 1; b < n && bounds[by_x[b]].lo.x() <= bounds[i].hi.x(); ++b) {
+      const int j = by_x[b];
+      if (bodies_[i].is_fixed() && bodies_[j].is_fixed()) continue;
+      if (bounds[i].overlaps(bounds[j]) && pair_collides(std::min(i, j), std::max(i, j)))
+        overlapping.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  }
+  std::sort(overlapping.begin(), overlapping.end());
+  std::vector<std::pair<int, int>> candidates;  // those of them of which one moves
   // A sleeping body whose bounds an awake one reaches is woken (and its touching neighbours
   // with it, pass after pass).
   for (bool woke = true; woke;) {
     woke = false;
     candidates.clear();
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) {
-        RigidBody &a = bodies_[i], &b = bodies_[j];
-        const bool a_moves = !a.is_fixed() && !a.at_rest, b_moves = !b.is_fixed() && !b.at_rest;
-        if (!a_moves && !b_moves) continue;
-        if (!bounds[i].overlaps(bounds[j])) continue;
-        if (!pair_collides(static_cast<int>(i), static_cast<int>(j))) continue;
-        candidates.emplace_back(static_cast<int>(i), static_cast<int>(j));
-        for (RigidBody* x : {&a, &b})
-          if (x->at_rest && !x->is_fixed()) x->at_rest = false, woke = true;
-      }
+    for (const auto& [i, j] : overlapping) {
+      RigidBody &a = bodies_[i], &b = bodies_[j];
+      const bool a_moves = !a.is_fixed() && !a.at_rest, b_moves = !b.is_fixed() && !b.at_rest;
+      if (!a_moves && !b_moves) continue;
+      candidates.emplace_back(i, j);
+      for (RigidBody* x : {&a, &b})
+        if (x->at_rest && !x->is_fixed()) x->at_rest = false, woke = true;
+    }
   }
   for (const auto& [i, j] : candidates)
     if (!bodies_[i].is_fixed() && !bodies_[j].is_fixed()) join(parent, i, j);
@@ -397,6 +414,12 @@ void World::advance_island(const Island& island, double h) {
         } else {
           c.normal_on = -1;
           c.normal_local = m.normal;
+        }
+        if (m.edges) {
+          c.edge_edge = true;
+          c.edge_a_local = pa.R.transpose() * m.edge_a;
+          c.edge_b_local = pb.R.transpose() * m.edge_b;
+          c.edge_sign = m.edge_a.cross(m.edge_b).dot(m.normal) >= 0.0 ? 1.0 : -1.0;
         }
         out.push_back(c);
       }
