@@ -205,6 +205,21 @@ ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const Is
   // misses the turn of the plane under the sliding point (ṅ·(p_b − p_a), 1e-4 m/s for a
   // domino's edge sliding down a turning neighbour: a held contact sinking in as an impact a
   // step). The separation, n·(p_b − p_a), is the same either way.
+  // Two edges sliding along each other touch where the lines are closest, not at the material
+  // points they touched at when the contact was found: those drift apart along the edges, and
+  // the turn of the normal over that offset (n̈·(p_b − p_a)) would sink a held edge in.
+  if (c.edge_edge) {
+    const double cosine = f.ea.dot(f.eb), across = 1.0 - cosine * cosine;
+    if (across > 1e-18) {
+      const Vec3 r = f.pa - f.pb;
+      const double da = f.ea.dot(r), db = f.eb.dot(r);
+      const double sa = (cosine * db - da) / across, sb = (db - cosine * da) / across;
+      f.pa += sa * f.ea;
+      f.pb += sb * f.eb;
+      if (p.a.kind == Side::Member) f.ra = f.pa - xa;
+      f.rb = f.pb - xb;
+    }
+  }
   if (!(round_side(A) && round_side(B)) && c.normal_on >= 0 && !c.edge_edge) {
     if (c.normal_on == p.b.index) {
       f.pb = f.pa + f.n * f.n.dot(f.pb - f.pa);
