@@ -149,6 +149,11 @@ void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
 
 }  // namespace
 
+// Two edges closer to parallel than this (the sine of their angle, 0.06°) have no line square
+// to both that is worth the name: an edge–edge contact turned that far (within a stretch, as
+// the bodies turn) keeps the normal of the body it was found on and its material points.
+constexpr double kEdgesCross = 1e-3;
+
 ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const IslandState& s) {
   const IslandPair& p = v.island->pairs[c.pair];
   ContactFrame f;
@@ -179,7 +184,7 @@ ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const Is
     f.ea = Ra * c.edge_a_local;
     f.eb = Rb * c.edge_b_local;
     const Vec3 u = f.ea.cross(f.eb);
-    if (u.norm() > 1e-9) f.n = c.edge_sign * u.normalized();
+    if (u.norm() > kEdgesCross) f.n = c.edge_sign * u.normalized();
   }
   // Side a.
   if (round_side(A)) {
@@ -210,7 +215,7 @@ ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const Is
   // the turn of the normal over that offset (n̈·(p_b − p_a)) would sink a held edge in.
   if (c.edge_edge) {
     const double cosine = f.ea.dot(f.eb), across = 1.0 - cosine * cosine;
-    if (across > 1e-18) {
+    if (across > kEdgesCross * kEdgesCross) {
       const Vec3 r = f.pa - f.pb;
       const double da = f.ea.dot(r), db = f.eb.dot(r);
       const double sa = (cosine * db - da) / across, sb = (db - cosine * da) / across;
@@ -283,7 +288,7 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
       const Vec3 wb = k[f.b[i].member].omega;
       const Vec3 u = fr.ea.cross(fr.eb);
       const double len = u.norm();
-      if (len > 1e-9) {
+      if (len > kEdgesCross) {
         const Vec3 du = wa.cross(fr.ea).cross(fr.eb) + fr.ea.cross(wb.cross(fr.eb));
         const Vec3 ndot = c.edge_sign * (du - (u / len) * (u / len).dot(du)) / len;
         return fr.n.cross(ndot);
