@@ -219,10 +219,20 @@ ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const Is
       const Vec3 r = f.pa - f.pb;
       const double da = f.ea.dot(r), db = f.eb.dot(r);
       const double sa = (cosine * db - da) / across, sb = (db - cosine * da) / across;
-      f.pa += sa * f.ea;
-      f.pb += sb * f.eb;
-      if (p.a.kind == Side::Member) f.ra = f.pa - xa;
-      f.rb = f.pb - xb;
+      const Vec3 qa = f.pa + sa * f.ea, qb = f.pb + sb * f.eb;
+      // Lines near parallel are closest far along them (|r| / sin² of their angle: 1e5 m for
+      // edges 0.06° apart that slid 0.1 m along each other). Points beyond either body are no
+      // longer on its edge: those edges have slid off each other's ends, and the levers to
+      // such points (a die's contact 10^5 m from its centre) would make its forces blow up.
+      // The material points stay then; the separation along n is the same either way.
+      const double slack = 1.0 + 1e-9;
+      if ((qa - xa).norm() <= slack * A->bounding_radius() &&
+          (qb - xb).norm() <= slack * B->bounding_radius()) {
+        f.pa = qa;
+        f.pb = qb;
+        if (p.a.kind == Side::Member) f.ra = f.pa - xa;
+        f.rb = f.pb - xb;
+      }
     }
   }
   if (!(round_side(A) && round_side(B)) && c.normal_on >= 0 && !c.edge_edge) {
@@ -326,123 +336,146 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     }
     b(i) = bi;
   }
-  const Eigen::MatrixXd A = contact_matrix(f, m, dir);
   HeldForces out;
-  out.friction.assign(static_cast<std::size_t>(n), Vec3::Zero());
   std::vector<char> local;
   std::vector<char>& active = active_ ? *active_ : local;
-  // With sliding friction A is not semidefinite, and the LCP may have several solutions: a box
-  // sliding flat on its face is held by all four corners, or (as Dantzig's pivoting may find
-  // from f = 0) by its two leading ones with the trailing ones accelerating away, a lift that
-  // then rocks it on in micro-impacts. The contacts held are those that touch and do not
-  // separate, so the first guess (where there is no last clamped set of this size) is all of
-  // them clamped; it is kept when its forces are all >= 0 (a complementary solution).
-  if (active.size() != static_cast<std::size_t>(b.size()))
-    active.assign(static_cast<std::size_t>(b.size()), 1);
-  if (sticking.empty()) {
-    if (!solve_lcp_pivoting(A, b, out.normal, active) && failed_) *failed_ = true;
-  } else {
-    // Static friction inside the stretch (Baraff 1994, section 7): a sticking contact that
-    // presses keeps its slip, two tangential rows whose relative acceleration is zero, with
-    // free (unbounded) forces; whether they stay in the cone is checked where a stretch
-    // starts (hold_or_slip). The equalities are eliminated, f_E = −A_EE⁺ (A_EN f_N + b_E), and
-    // the normal LCP is solved on the Schur complement: the tangent rows of coplanar points
-    // (a face's four corners) are dependent, so A_EE is singular and b_E has round-off outside
-    // its range, which a pivoting solve of the mixed problem does not survive; the
-    // pseudo-inverse takes b_E in least squares and puts no force in A_EE's null space.
-    // Which sticking contacts press is the normal LCP's own answer: begun from its last clamped
-    // set, redone (at most 4 times) while they disagree.
-    Frames g = f;
-    std::vector<Vec3> gdir = dir;
-    std::vector<Vec3> t(2 * sticking.size());
-    for (std::size_t j = 0; j < sticking.size(); ++j) {
-      const int i = sticking[j];
-      tangents(f.frame[i].n, t[2 * j], t[2 * j + 1]);
-      for (int a = 0; a < 2; ++a) {
-        g.frame.push_back(f.frame[i]);
-        g.frame.back().n = t[2 * j + a];
-        g.a.push_back(f.a[i]);
-        g.b.push_back(f.b[i]);
-        g.a.back().point_lever = f.a[i].lever;
-        g.b.back().point_lever = f.b[i].lever;
-        g.round_pair.push_back(f.round_pair[i]);
-        gdir.push_back(t[2 * j + a]);
-      }
-    }
-    const Eigen::MatrixXd M = contact_matrix(g, m, gdir);
-    // Tangential acceleration of the touching points without contact forces. A polyhedron's
-    // point is material (a + α × r + ω × (ω × r)); a ball's is where it touches, not a
-    // material point, so its slip changes by a + α × r alone (rolling has no slip to turn).
-    // A face's tangents turn with it: (ω_face × t)·(v_pb − v_pa).
-    const int e = static_cast<int>(t.size());
-    Eigen::VectorXd bt(e);
-    for (int r = 0; r < e; ++r) {
-      const int i = sticking[static_cast<std::size_t>(r / 2)];
-      const Vec3& tr = t[static_cast<std::size_t>(r)];
-      auto tangential_acc = [&](const SideGeometry& side, bool round) -> Vec3 {
-        if (side.member < 0) return Vec3::Zero();
-        const Free& q = k[side.member];
-        Vec3 acc = q.a + q.alpha.cross(side.lever);
-        if (!round) acc += q.omega.cross(q.omega.cross(side.lever));
-        return acc;
-      };
-      const IslandPair& p = v_.island->pairs[held[i].pair];
-      const bool round_a = round_side(v_.side_body(p.a)), round_b = round_side(v_.side_body(p.b));
-      double bi = tr.dot(tangential_acc(f.b[i], round_b) - tangential_acc(f.a[i], round_a));
-      if (held[i].normal_on >= 0 || held[i].edge_edge) {
-        const Vec3 dvel = point_vel(f.b[i], f.b[i].lever) - point_vel(f.a[i], f.a[i].lever);
-        bi += frame_turn(i).cross(tr).dot(dvel);
-      }
-      bt(r) = bi;
-    }
-    Eigen::VectorXd fE = Eigen::VectorXd::Zero(e);
-    for (int round = 0; round < 4; ++round) {
-      std::vector<int> rows;  // tangent rows (0-based in the tangent block) of pressing ones
-      for (int r = 0; r < e; ++r)
-        if (active[static_cast<std::size_t>(sticking[static_cast<std::size_t>(r / 2)])])
-          rows.push_back(r);
-      const std::vector<char> pressing = active;
-      const int q = static_cast<int>(rows.size());
-      Eigen::VectorXd y;
-      Eigen::MatrixXd X;
-      Eigen::MatrixXd S = A;
-      Eigen::VectorXd c = b;
-      Eigen::MatrixXd Ane(n, q);
-      if (q > 0) {
-        Eigen::MatrixXd Aee(q, q), Aen(q, n);
-        Eigen::VectorXd be(q);
-        for (int r = 0; r < q; ++r) {
-          be(r) = bt(rows[r]);
-          for (int cc = 0; cc < q; ++cc) Aee(r, cc) = M(n + rows[r], n + rows[cc]);
-          Aen.row(r) = M.block(n + rows[r], 0, 1, n);
-          Ane.col(r) = M.block(0, n + rows[r], n, 1);
+  // The forces along directions d (the normal, less friction where a contact slides); false
+  // where no method reached an exact solution.
+  auto solve_along = [&](const std::vector<Vec3>& d) -> bool {
+    bool ok = true;
+    const Eigen::MatrixXd A = contact_matrix(f, m, d);
+    out.friction.assign(static_cast<std::size_t>(n), Vec3::Zero());
+    // With sliding friction A is not semidefinite, and the LCP may have several solutions: a box
+    // sliding flat on its face is held by all four corners, or (as Dantzig's pivoting may find
+    // from f = 0) by its two leading ones with the trailing ones accelerating away, a lift that
+    // then rocks it on in micro-impacts. The contacts held are those that touch and do not
+    // separate, so the first guess (where there is no last clamped set of this size) is all of
+    // them clamped; it is kept when its forces are all >= 0 (a complementary solution).
+    if (active.size() != static_cast<std::size_t>(b.size()))
+      active.assign(static_cast<std::size_t>(b.size()), 1);
+    if (sticking.empty()) {
+      if (!solve_lcp_pivoting(A, b, out.normal, active)) ok = false;
+    } else {
+      // Static friction inside the stretch (Baraff 1994, section 7): a sticking contact that
+      // presses keeps its slip, two tangential rows whose relative acceleration is zero, with
+      // free (unbounded) forces; whether they stay in the cone is checked where a stretch
+      // starts (hold_or_slip). The equalities are eliminated, f_E = −A_EE⁺ (A_EN f_N + b_E), and
+      // the normal LCP is solved on the Schur complement: the tangent rows of coplanar points
+      // (a face's four corners) are dependent, so A_EE is singular and b_E has round-off outside
+      // its range, which a pivoting solve of the mixed problem does not survive; the
+      // pseudo-inverse takes b_E in least squares and puts no force in A_EE's null space.
+      // Which sticking contacts press is the normal LCP's own answer: begun from its last clamped
+      // set, redone (at most 4 times) while they disagree.
+      Frames g = f;
+      std::vector<Vec3> gdir = d;
+      std::vector<Vec3> t(2 * sticking.size());
+      for (std::size_t j = 0; j < sticking.size(); ++j) {
+        const int i = sticking[j];
+        tangents(f.frame[i].n, t[2 * j], t[2 * j + 1]);
+        for (int a = 0; a < 2; ++a) {
+          g.frame.push_back(f.frame[i]);
+          g.frame.back().n = t[2 * j + a];
+          g.a.push_back(f.a[i]);
+          g.b.push_back(f.b[i]);
+          g.a.back().point_lever = f.a[i].lever;
+          g.b.back().point_lever = f.b[i].lever;
+          g.round_pair.push_back(f.round_pair[i]);
+          gdir.push_back(t[2 * j + a]);
         }
-        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-        cod.setThreshold(1e-10);
-        cod.compute(Aee);
-        X = cod.solve(Aen);
-        y = cod.solve(be);
-        S -= Ane * X;
-        c -= Ane * y;
       }
-      if (!solve_lcp_pivoting(S, c, out.normal, active) && failed_) *failed_ = true;
-      fE.setZero();
-      if (q > 0) {
-        const Eigen::VectorXd fq = -(X * out.normal + y);
-        for (int r = 0; r < q; ++r) fE(rows[r]) = fq(r);
+      const Eigen::MatrixXd M = contact_matrix(g, m, gdir);
+      // Tangential acceleration of the touching points without contact forces. A polyhedron's
+      // point is material (a + α × r + ω × (ω × r)); a ball's is where it touches, not a
+      // material point, so its slip changes by a + α × r alone (rolling has no slip to turn).
+      // A face's tangents turn with it: (ω_face × t)·(v_pb − v_pa).
+      const int e = static_cast<int>(t.size());
+      Eigen::VectorXd bt(e);
+      for (int r = 0; r < e; ++r) {
+        const int i = sticking[static_cast<std::size_t>(r / 2)];
+        const Vec3& tr = t[static_cast<std::size_t>(r)];
+        auto tangential_acc = [&](const SideGeometry& side, bool round) -> Vec3 {
+          if (side.member < 0) return Vec3::Zero();
+          const Free& q = k[side.member];
+          Vec3 acc = q.a + q.alpha.cross(side.lever);
+          if (!round) acc += q.omega.cross(q.omega.cross(side.lever));
+          return acc;
+        };
+        const IslandPair& p = v_.island->pairs[held[i].pair];
+        const bool round_a = round_side(v_.side_body(p.a)), round_b = round_side(v_.side_body(p.b));
+        double bi = tr.dot(tangential_acc(f.b[i], round_b) - tangential_acc(f.a[i], round_a));
+        if (held[i].normal_on >= 0 || held[i].edge_edge) {
+          const Vec3 dvel = point_vel(f.b[i], f.b[i].lever) - point_vel(f.a[i], f.a[i].lever);
+          bi += frame_turn(i).cross(tr).dot(dvel);
+        }
+        bt(r) = bi;
       }
-      bool agree = true;
-      for (int i : sticking)
-        agree &= (active[static_cast<std::size_t>(i)] != 0) ==
-                 (pressing[static_cast<std::size_t>(i)] != 0);
-      if (agree) break;
+      Eigen::VectorXd fE = Eigen::VectorXd::Zero(e);
+      for (int round = 0; round < 4; ++round) {
+        std::vector<int> rows;  // tangent rows (0-based in the tangent block) of pressing ones
+        for (int r = 0; r < e; ++r)
+          if (active[static_cast<std::size_t>(sticking[static_cast<std::size_t>(r / 2)])])
+            rows.push_back(r);
+        const std::vector<char> pressing = active;
+        const int q = static_cast<int>(rows.size());
+        Eigen::VectorXd y;
+        Eigen::MatrixXd X;
+        Eigen::MatrixXd S = A;
+        Eigen::VectorXd c = b;
+        Eigen::MatrixXd Ane(n, q);
+        if (q > 0) {
+          Eigen::MatrixXd Aee(q, q), Aen(q, n);
+          Eigen::VectorXd be(q);
+          for (int r = 0; r < q; ++r) {
+            be(r) = bt(rows[r]);
+            for (int cc = 0; cc < q; ++cc) Aee(r, cc) = M(n + rows[r], n + rows[cc]);
+            Aen.row(r) = M.block(n + rows[r], 0, 1, n);
+            Ane.col(r) = M.block(0, n + rows[r], n, 1);
+          }
+          Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+          cod.setThreshold(1e-10);
+          cod.compute(Aee);
+          X = cod.solve(Aen);
+          y = cod.solve(be);
+          S -= Ane * X;
+          c -= Ane * y;
+        }
+        if (!solve_lcp_pivoting(S, c, out.normal, active)) ok = false;
+        fE.setZero();
+        if (q > 0) {
+          const Eigen::VectorXd fq = -(X * out.normal + y);
+          for (int r = 0; r < q; ++r) fE(rows[r]) = fq(r);
+        }
+        bool agree = true;
+        for (int i : sticking)
+          agree &= (active[static_cast<std::size_t>(i)] != 0) ==
+                   (pressing[static_cast<std::size_t>(i)] != 0);
+        if (agree) break;
+      }
+      for (std::size_t j = 0; j < sticking.size(); ++j)
+        out.friction[static_cast<std::size_t>(sticking[j])] =
+            fE(2 * j) * t[2 * j] + fE(2 * j + 1) * t[2 * j + 1];
     }
-    for (std::size_t j = 0; j < sticking.size(); ++j)
-      out.friction[static_cast<std::size_t>(sticking[j])] =
-          fE(2 * j) * t[2 * j] + fE(2 * j + 1) * t[2 * j + 1];
+    return ok;
+  };
+  std::vector<Vec3> along = dir;
+  if (!solve_along(dir)) {
+    if (failed_) *failed_ = true;
+    // No solution reached with sliding friction in the matrix (Painlevé's paradox, or one the
+    // pivots could not find): its last resort, projected Gauss–Seidel on an unsymmetric matrix,
+    // can diverge (1e29 N on a pile of dice). The forces are then those of the same contacts
+    // with no friction where they slide: a symmetric semidefinite problem, which always has a
+    // solution and keeps every held contact from sinking in. μ times those normal forces
+    // against the slip would not (dice sank 3 mm in a step, whose correction gained 0.2 J);
+    // without them the sliding contacts do no work, and the stretch gains no energy.
+    bool slides = false;
+    for (int i = 0; i < n; ++i) slides |= dir[i] != f.frame[i].n;
+    if (slides) {
+      for (int i = 0; i < n; ++i) along[i] = f.frame[i].n;
+      solve_along(along);
+    }
   }
   out.on_b.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) out.on_b[i] = out.normal(i) * dir[i] + out.friction[i];
+  for (int i = 0; i < n; ++i) out.on_b[i] = out.normal(i) * along[i] + out.friction[i];
   return out;
 }
 

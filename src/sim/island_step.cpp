@@ -873,7 +873,8 @@ void World::advance_island(const Island& island, double h) {
     diagnostics_.warn("contact_solve_fallback", time_,
                       "the contact forces of the island of body \"" +
                           bodies_[first].name() + "\" had no exact solution the pivoting solver "
-                          "reached (sliding friction); an approximate one was used",
+                          "reached (sliding friction); those forces were solved without the "
+                          "friction of the contacts that slide",
                       smaller_step_fix());
   write_back();
   for (int body : island.members) {
