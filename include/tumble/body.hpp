@@ -5,6 +5,7 @@
 /// A particle carries (x, P) only: its orientation and angular momentum are never integrated.
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -94,10 +95,10 @@ class RigidBody {
   bool is_sphere() const { return shape_ == ShapeKind::Sphere; }
   bool is_fixed() const { return fixed_; }
   double radius() const { return radius_; }
-  const std::vector<HullFace>& faces() const { return faces_; }
+  const std::vector<HullFace>& faces() const { return geometry_->faces; }
   /// The distinct directions of the polyhedron's edges (body frame, unit): the edge axes of the
   /// separating-axis test. Empty for spheres and particles.
-  const std::vector<Vec3>& edge_directions() const { return edge_directions_; }
+  const std::vector<Vec3>& edge_directions() const { return geometry_->edge_directions; }
   /// Distance from the centre of mass to the farthest point of the shape.
   double bounding_radius() const { return bounding_radius_; }
   /// Half the edges of the smallest box about the centre of mass, along the body's axes, that
@@ -112,12 +113,13 @@ class RigidBody {
   double inverse_mass() const { return inverse_mass_; }
   const Vec3& inertia_body() const { return inertia_body_; }
   const Vec3& inverse_inertia_body() const { return inverse_inertia_body_; }
-  const std::vector<Vec3>& vertices() const { return vertices_; }
+  const std::vector<Vec3>& vertices() const { return geometry_->vertices; }
   double restitution() const { return restitution_; }
   /// Contact vertex i relative to the centre of mass in world axes, for orientation R: R v_i,
   /// or for a sphere (one vertex) the point of it lowest along y, (0, -r, 0) whatever R.
   Vec3 vertex_offset(const Mat3& R, int i) const {
-    return shape_ == ShapeKind::Sphere ? Vec3(0.0, -radius_, 0.0) : Vec3(R * vertices_[i]);
+    return shape_ == ShapeKind::Sphere ? Vec3(0.0, -radius_, 0.0)
+                                       : Vec3(R * geometry_->vertices[i]);
   }
 
   BodyState state;
@@ -146,13 +148,19 @@ class RigidBody {
   ShapeKind shape_;
   bool fixed_;
   double radius_;
-  std::vector<HullFace> faces_;
-  std::vector<Vec3> edge_directions_;
+  /// The polyhedron in the body frame, shared by every copy of the body: a world is copied at
+  /// every sample, and copying a thousand bodies' corners and faces cost more than their step.
+  struct Geometry {
+    std::vector<HullFace> faces;
+    std::vector<Vec3> edge_directions;
+    std::vector<Vec3> vertices;
+  };
+  static std::shared_ptr<const Geometry> make_geometry(const BodyDef& def);
+  std::shared_ptr<const Geometry> geometry_;
   double bounding_radius_;
   Vec3 half_extent_body_;
   double mass_, inverse_mass_;
   Vec3 inertia_body_, inverse_inertia_body_;
-  std::vector<Vec3> vertices_;
   double restitution_;
   Quat principal_axes_;
   Vec3 com_offset_;

