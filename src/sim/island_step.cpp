@@ -478,7 +478,7 @@ void World::advance_island(const Island& island, double h) {
   int events = 0;
   bool contact = false;
   bool solve_failed = false;
-  bool settle = false;
+  bool settle = false, blind = false;
   std::vector<char> active;
   std::vector<std::pair<int, std::uint32_t>> active_of;  // the contacts `active` is for
   // Per pair, how much deeper than it starts a stretch it may go before it is an impact (see
@@ -553,7 +553,13 @@ void World::advance_island(const Island& island, double h) {
     // held points' drift, and far below anything a lift or an impact there could make visible.
     std::vector<std::size_t> watched;
     std::vector<double> gap_start, gap_offset;
+    // After the event budget (settled, below), the touching pairs are held and no longer
+    // watched, but the pairs apart at the stretch's start still are: a new meeting is an impact
+    // still, resolved inelastically. Unwatched, a pile of a hundred dice that spent its budget
+    // let six pairs 0.03–2.4 mm apart go 0.57 mm through each other within the step, and the
+    // next step's correction gained 0.043 J.
     for (std::size_t p = 0; p < island.pairs.size(); ++p) {
+      if (settle && pair_touching[p]) continue;
       const double g = pair_separation(p, start);
       watched.push_back(p);
       gap_offset.push_back(std::min(g, 0.0) -
@@ -565,7 +571,7 @@ void World::advance_island(const Island& island, double h) {
     };
     bool impact = false;
     std::vector<std::size_t> crossed_pairs;
-    if (!watched.empty() && !settle) {
+    if (!watched.empty() && !blind) {
       // A bound on how fast each pair's separation can shrink: the relative speed of their
       // centres plus each one's spin times its reach, the larger of the stretch's two ends
       // (under a constant force a speed is largest at an end), with a 25 % margin for the
@@ -870,8 +876,11 @@ void World::advance_island(const Island& island, double h) {
                             "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       // Pathological (a light body hammered between a heavy one and the floor): the rest of
       // the step takes every touching contact as resting (inelastic, held by contact forces)
-      // and watches for no more impacts, rather than loop on. Nothing passes through.
+      // and watches only the pairs that are apart, rather than loop on. Each of those meetings
+      // leaves one more pair touching; should even they go on past a second budget, nothing is
+      // watched for the rest of the step.
       if (++events >= 2 * Tol::kMaxEventsPerStep) settle = true;
+      if (events >= 4 * Tol::kMaxEventsPerStep) blind = true;
     }
     keep_step(static_cast<std::size_t>(first), end_info);
   }
