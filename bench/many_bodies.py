@@ -5,7 +5,10 @@
 #   dice K         K dice of 0.2 m (density 1000) on an n^3 lattice (n^3 >= K), 0.3 m apart,
 #                  each tilted and spinning, dropped onto the floor
 # Friction 0.5 and restitution 0 everywhere; rk4, dt = 0.002, 10 s (pyramid_hit: 5 s).
-#   bench/many_bodies.py pyramid 20 [--duration S] [--dt S] > scene.toml
+# --float: no gravity, and the bodies pass through each other (collisions = "floor"): the dice
+# spin where they were put and never reach the floor, a rendering load whose simulation is cheap
+# (bench/many_bodies_render.sh).
+#   bench/many_bodies.py pyramid 20 [--duration S] [--dt S] [--float] > scene.toml
 # Same arguments, same bytes: floats print with repr (shortest form that reads back exactly).
 import argparse
 import math
@@ -25,14 +28,18 @@ def vec(v):
     return "[" + ", ".join(f(c) for c in v) + "]"
 
 
-def header(kind, count, duration, dt):
-    return [
-        f"# bench/many_bodies.py {kind} {count} (issue 21)",
+def header(kind, count, duration, dt, floating=False):
+    lines = [
+        f"# bench/many_bodies.py {kind} {count}{' --float' if floating else ''} (issue 21)",
         "",
         "[simulation]",
         f"duration = {f(duration)}",
         f"dt = {f(dt)}",
         'integrator = "rk4"',
+    ]
+    if floating:
+        lines += ["gravity = [0.0, 0.0, 0.0]", 'collisions = "floor"']
+    return lines + [
         "",
         "[floor]",
         f"restitution = {f(RESTITUTION)}",
@@ -106,6 +113,8 @@ def main():
     p.add_argument("count", type=int, help="pyramid rows N, or number of dice K")
     p.add_argument("--duration", type=float, help="simulated seconds (default 10, pyramid_hit 5)")
     p.add_argument("--dt", type=float, default=0.002, help="physics step (default 0.002)")
+    p.add_argument("--float", action="store_true", dest="floating",
+                   help="no gravity, bodies pass through each other (a cheap rendering load)")
     a = p.parse_args()
     if a.count < 1:
         p.error("count must be at least 1")
@@ -113,7 +122,7 @@ def main():
     duration = default_duration if a.duration is None else a.duration
     if not (duration > 0 and math.isfinite(duration)) or not (a.dt > 0 and math.isfinite(a.dt)):
         p.error("--duration and --dt must be positive")
-    lines = header(a.kind, a.count, duration, a.dt) + make(a.count)
+    lines = header(a.kind, a.count, duration, a.dt, a.floating) + make(a.count)
     sys.stdout.write("\n".join(lines) + "\n")
 
 
