@@ -10,11 +10,13 @@ layout(location = 3) in vec2 in_uv;
 uniform mat4 u_model;
 uniform mat4 u_view_projection;
 uniform mat3 u_normal_matrix;
+uniform vec3 u_color;  // sRGB
 
 out vec3 v_world_position;
 out vec3 v_world_normal;
 out vec3 v_albedo;
 out vec2 v_uv;
+flat out vec3 v_color;
 
 void main() {
   vec4 world = u_model * vec4(in_position, 1.0);
@@ -22,5 +24,6 @@ void main() {
   v_world_normal = u_normal_matrix * in_normal;
   v_albedo = in_albedo;
   v_uv = in_uv;
+  v_color = u_color;
   gl_Position = u_view_projection * world;
 }

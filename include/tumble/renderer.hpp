@@ -95,6 +95,11 @@ class Renderer {
   /// bytes as drawing it all). `true`: every picture from scratch, the reference that claim is
   /// tested against.
   void redraw_in_full(bool on);
+  /// Bodies that share a model (boxes, spheres, particles) are drawn many in one call, each
+  /// with its own transform and colour (instancing), in the lit and the shadow pass; mesh bodies
+  /// and translucent poses one by one. `true`: every body with its own draw call, the reference
+  /// the instancing is tested against (the same bytes).
+  void draw_each_body(bool on);
   /// The share of the frame's pixels the last draw() drew, in (0, 1].
   double redrawn_share() const;
   /// Reads the last drawn frame into `rgba` (resized) as RGBA rows, bottom-up as OpenGL returns

@@ -4,6 +4,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <optional>
 
@@ -52,6 +53,12 @@ struct Renderer::Impl {
   Antialias antialias;
   Backdrop backdrop;
   GLuint mesh_program = 0, floor_program = 0, fxaa_program = 0;
+  // Bodies that share a model, many in one draw (mesh_instanced.vert): one vertex array per
+  // shared model (its vertices, and the instances' attributes pointed at per draw) and the
+  // instances of the picture being drawn.
+  GLuint instanced_program = 0, instance_vbo = 0;
+  std::array<GLuint, 3> instanced_vao = {0, 0, 0};  // by SharedModel
+  bool each_body = false;  // every body drawn on its own: the reference for instancing
   // FXAA's pixels: rectangles marked in the stencil (pixel_rects.vert), their corners streamed.
   GLuint rects_program = 0, rects_vao = 0, rects_vbo = 0;
   Mesh cube, sphere, ball, floor;
@@ -96,7 +103,10 @@ struct Renderer::Impl {
     glDeleteVertexArrays(1, &empty_vao);
     glDeleteVertexArrays(1, &rects_vao);
     glDeleteBuffers(1, &rects_vbo);
-    for (GLuint program : {mesh_program, floor_program, fxaa_program, rects_program})
+    glDeleteVertexArrays(GLsizei(instanced_vao.size()), instanced_vao.data());
+    glDeleteBuffers(1, &instance_vbo);
+    for (GLuint program :
+         {mesh_program, floor_program, fxaa_program, rects_program, instanced_program})
       glDeleteProgram(program);
     const GLuint fbos[] = {ms_fbo, fbo};
     glDeleteFramebuffers(2, fbos);
@@ -165,11 +175,34 @@ struct Renderer::Impl {
     mesh_program = link_program("mesh.vert", "mesh.frag");
     glUseProgram(mesh_program);
     glUniform1i(glGetUniformLocation(mesh_program, "u_texture"), kModelTextureUnit);
+    instanced_program = link_program("mesh_instanced.vert", "mesh.frag");
+    glUseProgram(instanced_program);
+    glUniform1i(glGetUniformLocation(instanced_program, "u_texture"), kModelTextureUnit);
     floor_program = link_program("floor.vert", "floor.frag");
     cube = make_cube();
     sphere = make_sphere();
     ball = make_marked_sphere();
     floor = make_floor_quad();
+    // The shared models' vertices as their own arrays have them (position, normal: attributes
+    // 0 and 1), with the instances' attributes beside them.
+    glGenBuffers(1, &instance_vbo);
+    glGenVertexArrays(GLsizei(instanced_vao.size()), instanced_vao.data());
+    for (const SharedModel m : {SharedModel::Cube, SharedModel::Ball, SharedModel::Particle}) {
+      const Mesh& mesh = shared_mesh(m);
+      glBindVertexArray(instanced_vao[std::size_t(m)]);
+      glBindBuffer(GL_ARRAY_BUFFER, mesh.vbo);
+      glEnableVertexAttribArray(0);
+      glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+      glEnableVertexAttribArray(1);
+      glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                            reinterpret_cast<void*>(3 * sizeof(float)));
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.ebo);
+      for (GLuint a = kFirstInstanceAttribute; a < kFirstInstanceAttribute + 8; ++a) {
+        glEnableVertexAttribArray(a);
+        glVertexAttribDivisor(a, 1);
+      }
+    }
+    glBindVertexArray(0);
     checker_m = floor_tile_m(scene, models);
     // Each model is uploaded once; a frame only sets its transform.
     model_meshes.resize(scene.bodies.size());
@@ -192,6 +225,138 @@ struct Renderer::Impl {
     }
     if (glGetError() != GL_NO_ERROR) gl_fail("setting up the renderer failed");
   }
+
+  // The models bodies share: a box draws the unit cube, a sphere the marked ball, a particle the
+  // plain sphere. A mesh body draws its own model, on its own (its materials are its own).
+  enum class SharedModel { Cube, Ball, Particle };
+  static std::optional<SharedModel> shared_model(Shape shape) {
+    switch (shape) {
+      case Shape::Box:
+        return SharedModel::Cube;
+      case Shape::Sphere:
+        return SharedModel::Ball;
+      case Shape::Particle:
+        return SharedModel::Particle;
+      case Shape::Mesh:
+        break;
+    }
+    return std::nullopt;
+  }
+  const Mesh& shared_mesh(SharedModel m) const {
+    return m == SharedModel::Cube ? cube : m == SharedModel::Ball ? ball : sphere;
+  }
+
+  // One body as mesh_instanced.vert reads it: the values draw_body() sets as uniforms, as the
+  // same floats (the ball's marking colour beside its colour: the marked triangles are a second
+  // draw with the colour attribute pointed there).
+  struct Instance {
+    float model[16];         // column-major, attributes 4-7
+    float normal_matrix[9];  // column-major, attributes 8-10
+    float color[3];          // sRGB, attribute 11
+    float marking[3];        // the ball's marked octants' colour
+  };
+  static constexpr GLuint kFirstInstanceAttribute = 4;
+  // Instances [first, first + count) of the picture's, all of one shared model.
+  struct Run {
+    std::size_t first = 0;
+    GLsizei count = 0;
+  };
+  using Runs = std::array<Run, 3>;  // by SharedModel
+  std::vector<Instance> instances;  // the picture's: the lit bodies', then each exposure's shadows
+  Runs lit_runs;                    // the opaque exposures' bodies
+  std::vector<Runs> shadow_runs;    // by exposure
+
+  static Instance instance(const Mat4& model, const Mat3& normal_matrix, const Vec3& color,
+                           const Vec3& marking) {
+    Instance out;
+    const Mat4f m = model.cast<float>();
+    const Eigen::Matrix3f n = normal_matrix.cast<float>();
+    std::copy_n(m.data(), 16, out.model);
+    std::copy_n(n.data(), 9, out.normal_matrix);
+    for (int k = 0; k < 3; ++k) {
+      out.color[k] = float(color[k]);
+      out.marking[k] = float(marking[k]);
+    }
+    return out;
+  }
+  static Vec3 marking_color(const Vec3& color) { return 0.5 * (color + Vec3::Ones()); }
+
+  // The instances of a picture, uploaded once for all its scissored passes: every opaque
+  // exposure's bodies by shared model (exposure, then scene order within each model: the order
+  // draw_body() would draw them in), and each exposure's bodies flattened onto the floor.
+  void prepare_instances(std::span<const Exposure> exposures, const Vec3& light, bool shadows) {
+    instances.clear();
+    lit_runs = Runs{};
+    shadow_runs.assign(shadows ? exposures.size() : 0, Runs{});
+    if (each_body) return;
+    const auto add = [&](const World& world, SharedModel m, const Mat4* flatten) {
+      for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+        if (shared_model(scene.bodies[i].shape) != m) continue;
+        const Mat4 model = model_matrix(world, i);
+        const Vec3 rgb = color_of(scene.bodies[i].color);
+        instances.push_back(flatten ? instance(*flatten * model, Mat3::Identity(), rgb, rgb)
+                                    : instance(model, model.block<3, 3>(0, 0).inverse().transpose(),
+                                               rgb, marking_color(rgb)));
+      }
+    };
+    for (const SharedModel m : {SharedModel::Cube, SharedModel::Ball, SharedModel::Particle}) {
+      Run& run = lit_runs[std::size_t(m)];
+      run.first = instances.size();
+      for (const Exposure& e : exposures)
+        if (e.opacity >= 1.0) add(*e.world, m, nullptr);
+      run.count = GLsizei(instances.size() - run.first);
+    }
+    if (shadows) {
+      const Mat4 flatten = flattening(light, scene.floor->height);
+      for (std::size_t e = 0; e < exposures.size(); ++e)
+        for (const SharedModel m : {SharedModel::Cube, SharedModel::Ball, SharedModel::Particle}) {
+          Run& run = shadow_runs[e][std::size_t(m)];
+          run.first = instances.size();
+          add(*exposures[e].world, m, &flatten);
+          run.count = GLsizei(instances.size() - run.first);
+        }
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, instance_vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(Instance)), instances.data(),
+                 GL_STREAM_DRAW);
+  }
+
+  // The run's instances of model m with the instanced program current: indices [first,
+  // first + count) of the model, in the instances' colour or (the ball's marking) their marking.
+  void draw_instances(SharedModel m, const Run& run, GLsizei first_index, GLsizei index_count,
+                      bool marking) {
+    if (run.count == 0) return;
+    glBindVertexArray(instanced_vao[std::size_t(m)]);
+    glBindBuffer(GL_ARRAY_BUFFER, instance_vbo);
+    const std::size_t base = run.first * sizeof(Instance);
+    const auto point = [&](GLuint a, GLint size, std::size_t offset) {
+      glVertexAttribPointer(a, size, GL_FLOAT, GL_FALSE, GLsizei(sizeof(Instance)),
+                            reinterpret_cast<const void*>(base + offset));
+    };
+    for (GLuint c = 0; c < 4; ++c)
+      point(kFirstInstanceAttribute + c, 4, offsetof(Instance, model) + 4 * c * sizeof(float));
+    for (GLuint c = 0; c < 3; ++c)
+      point(kFirstInstanceAttribute + 4 + c, 3,
+            offsetof(Instance, normal_matrix) + 3 * c * sizeof(float));
+    point(kFirstInstanceAttribute + 7, 3,
+          marking ? offsetof(Instance, marking) : offsetof(Instance, color));
+    glDrawElementsInstanced(
+        GL_TRIANGLES, index_count, GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(sizeof(unsigned) * std::size_t(first_index)), run.count);
+  }
+  // Every instance of the runs, whole models (shadows) or lit (the ball in its two colours).
+  void draw_runs(const Runs& runs, bool lit) {
+    draw_instances(SharedModel::Cube, runs[0], 0, cube.count, false);
+    if (lit) {
+      draw_instances(SharedModel::Ball, runs[1], ball.marked, ball.count - ball.marked, false);
+      draw_instances(SharedModel::Ball, runs[1], 0, ball.marked, true);
+    } else {
+      draw_instances(SharedModel::Ball, runs[1], 0, ball.count, false);
+    }
+    draw_instances(SharedModel::Particle, runs[2], 0, sphere.count, false);
+  }
+  // Whether body i is drawn on its own (with draw_body, draw_mesh) rather than as an instance.
+  bool on_its_own(std::size_t i) const { return each_body || !shared_model(scene.bodies[i].shape); }
 
   static void set(GLuint program, const char* name, const Mat4& m) {
     const Mat4f f = m.cast<float>();
@@ -389,6 +554,7 @@ struct Renderer::Impl {
     for (const Rect& r : dirty) redrawn += double(r[2] - r[0]) * double(r[3] - r[1]);
     redrawn /= double(width) * double(height);
 
+    prepare_instances(exposures, light, casts_shadows(light));
     glBindFramebuffer(GL_FRAMEBUFFER, antialias == Antialias::Msaa ? ms_fbo : fbo);
     glViewport(0, 0, width, height);
     glEnable(GL_SCISSOR_TEST);
@@ -504,22 +670,32 @@ struct Renderer::Impl {
       set(floor_program, "u_checker_m", checker_m);
       glBindVertexArray(floor.vao);
       glDrawElements(GL_TRIANGLES, floor.count, GL_UNSIGNED_INT, nullptr);
-      if (scene.light.shadows && light.y() < -1e-3)
-        draw_shadows(exposures, view_projection, light, h);
+      if (casts_shadows(light)) draw_shadows(exposures, view_projection, light, h);
     }
 
+    // Opaque bodies first, writing depth: those that share a model as instances, the others
+    // one by one; then the translucent ones over them.
+    for (const GLuint program : {instanced_program, mesh_program}) {
+      glUseProgram(program);
+      set(program, "u_view_projection", view_projection);
+      set(program, "u_light_direction", light);
+      set(program, "u_eye", eye(*exposures.back().world));
+      set(program, "u_shadow", 0.0);
+      set(program, "u_opacity", 1.0);
+      glUniform1i(glGetUniformLocation(program, "u_material"), 0);
+    }
+    glUseProgram(instanced_program);
+    draw_runs(lit_runs, true);
     glUseProgram(mesh_program);
-    set(mesh_program, "u_view_projection", view_projection);
-    set(mesh_program, "u_light_direction", light);
-    set(mesh_program, "u_eye", eye(*exposures.back().world));
-    set(mesh_program, "u_shadow", 0.0);
-    set(mesh_program, "u_opacity", 1.0);
-    glUniform1i(glGetUniformLocation(mesh_program, "u_material"), 0);
-    // Opaque bodies first, writing depth; then the translucent ones over them.
     for (const Exposure& e : exposures)
       if (e.opacity >= 1.0)
-        for (std::size_t i = 0; i < e.world->bodies().size(); ++i) draw_body(*e.world, i);
+        for (std::size_t i = 0; i < e.world->bodies().size(); ++i)
+          if (on_its_own(i)) draw_body(*e.world, i);
     draw_translucent(exposures, view_projection);
+  }
+
+  bool casts_shadows(const Vec3& light) const {
+    return scene.floor && scene.light.shadows && light.y() < -1e-3;
   }
 
   // Body i of `world`, lit, with the mesh program's current opacity and blend state.
@@ -533,7 +709,7 @@ struct Renderer::Impl {
       glBindVertexArray(ball.vao);
       glDrawElements(GL_TRIANGLES, ball.count - ball.marked, GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(sizeof(unsigned) * std::size_t(ball.marked)));
-      set(mesh_program, "u_color", Vec3(0.5 * (color_of(scene.bodies[i].color) + Vec3::Ones())));
+      set(mesh_program, "u_color", marking_color(color_of(scene.bodies[i].color)));
       glDrawElements(GL_TRIANGLES, ball.marked, GL_UNSIGNED_INT, nullptr);
       return;
     }
@@ -689,6 +865,15 @@ struct Renderer::Impl {
     glDrawElements(GL_TRIANGLES, mesh.count, GL_UNSIGNED_INT, nullptr);
   }
 
+  // Flattens points onto the plane y = h along the light: p' = p − ((p_y − h) / L_y) L, as a
+  // matrix acting on homogeneous points.
+  static Mat4 flattening(const Vec3& light, double h) {
+    Mat4 flatten = Mat4::Identity();
+    flatten.block<3, 1>(0, 1) -= light / light.y();
+    flatten.block<3, 1>(0, 3) += light * (h / light.y());
+    return flatten;
+  }
+
   // Planar shadows: each body flattened onto the plane y = h along the light, darkening the
   // floor under it. The stencil lets each pixel darken once where shadows overlap (a box's front
   // and back faces land on the same pixels, and so do the shadows of strobe poses that overlap).
@@ -696,10 +881,9 @@ struct Renderer::Impl {
   // pile of faint poses never blackens the floor. Exact for a plane, one cheap extra pass.
   void draw_shadows(std::span<const Exposure> exposures, const Mat4& view_projection,
                     const Vec3& light, double h) {
-    // p' = p − ((p_y − h) / L_y) L, as a matrix acting on homogeneous points.
-    Mat4 flatten = Mat4::Identity();
-    flatten.block<3, 1>(0, 1) -= light / light.y();
-    flatten.block<3, 1>(0, 3) += light * (h / light.y());
+    const Mat4 flatten = flattening(light, h);
+    glUseProgram(instanced_program);
+    set(instanced_program, "u_view_projection", view_projection);
     glUseProgram(mesh_program);
     set(mesh_program, "u_view_projection", view_projection);
     set(mesh_program, "u_normal_matrix", Mat3(Mat3::Identity()));
@@ -718,9 +902,18 @@ struct Renderer::Impl {
       return exposures[a].opacity > exposures[b].opacity;
     });
     for (const std::size_t e : order) {
-      set(mesh_program, "u_shadow", 0.32 * std::clamp(exposures[e].opacity, 0.0, 1.0));
+      // One exposure's shadows are all alike: drawn in any order, a pixel darkens the same.
+      const double shadow = 0.32 * std::clamp(exposures[e].opacity, 0.0, 1.0);
+      if (!each_body) {
+        glUseProgram(instanced_program);
+        set(instanced_program, "u_shadow", shadow);
+        draw_runs(shadow_runs[e], false);
+        glUseProgram(mesh_program);
+      }
+      set(mesh_program, "u_shadow", shadow);
       const World& world = *exposures[e].world;
       for (std::size_t i = 0; i < world.bodies().size(); ++i) {
+        if (!on_its_own(i)) continue;
         set(mesh_program, "u_model", Mat4(flatten * model_matrix(world, i)));
         draw_mesh(i);
       }
@@ -838,6 +1031,9 @@ void Renderer::draw(std::span<const Exposure> exposures) {
 }
 void Renderer::redraw_in_full(bool on) {
   impl_->full_redraw = on;
+}
+void Renderer::draw_each_body(bool on) {
+  impl_->each_body = on;
 }
 double Renderer::redrawn_share() const {
   return impl_->redrawn;
