@@ -6,23 +6,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "held_rows.hpp"
 #include "integrator_schemes.hpp"
 #include "lcp.hpp"
 
 namespace tumble {
-
-// Where a force along the contact acts on one side, and how its point moves.
-struct SideGeometry {
-  int member = -1;                  // local index, -1 for a static side
-  Vec3 lever = Vec3::Zero();        // force lever from the centre of mass
-  Vec3 point_lever = Vec3::Zero();  // lever of the constrained point (zero for a round side)
-};
-
-struct Frames {
-  std::vector<ContactFrame> frame;
-  std::vector<SideGeometry> a, b;
-  std::vector<bool> round_pair;
-};
 
 namespace {
 
@@ -57,10 +45,6 @@ Frames frames_of(const IslandView& v, const std::vector<IslandContact>& contacts
 }
 
 // Per member: inverse mass and world inverse inertia at s.
-struct MassInfo {
-  double inv_m;
-  Mat3 Iinv;
-};
 std::vector<MassInfo> masses(const IslandView& v, const IslandState& s) {
   std::vector<MassInfo> m(s.size());
   for (std::size_t k = 0; k < s.size(); ++k) {
@@ -153,6 +137,7 @@ void tangents(const Vec3& n, Vec3& t1, Vec3& t2) {
 // to both that is worth the name: an edge–edge contact turned that far (within a stretch, as
 // the bodies turn) keeps the normal of the body it was found on and its material points.
 constexpr double kEdgesCross = 1e-3;
+
 
 ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const IslandState& s) {
   const IslandPair& p = v.island->pairs[c.pair];
@@ -336,15 +321,66 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     }
     b(i) = bi;
   }
+  // The tangent rows of the sticking contacts: two unit tangents each, and the tangential
+  // acceleration of the touching points without contact forces. A polyhedron's point is
+  // material (a + α × r + ω × (ω × r)); a ball's is where it touches, not a material point, so
+  // its slip changes by a + α × r alone (rolling has no slip to turn). A face's tangents turn
+  // with it: (ω_face × t)·(v_pb − v_pa).
+  std::vector<Vec3> t(2 * sticking.size());
+  for (std::size_t j = 0; j < sticking.size(); ++j)
+    tangents(f.frame[sticking[j]].n, t[2 * j], t[2 * j + 1]);
+  Eigen::VectorXd bt(static_cast<Eigen::Index>(t.size()));
+  for (int r = 0; r < bt.size(); ++r) {
+    const int i = sticking[static_cast<std::size_t>(r / 2)];
+    const Vec3& tr = t[static_cast<std::size_t>(r)];
+    auto tangential_acc = [&](const SideGeometry& side, bool round) -> Vec3 {
+      if (side.member < 0) return Vec3::Zero();
+      const Free& q = k[side.member];
+      Vec3 acc = q.a + q.alpha.cross(side.lever);
+      if (!round) acc += q.omega.cross(q.omega.cross(side.lever));
+      return acc;
+    };
+    const IslandPair& p = v_.island->pairs[held[i].pair];
+    const bool round_a = round_side(v_.side_body(p.a)), round_b = round_side(v_.side_body(p.b));
+    double bi = tr.dot(tangential_acc(f.b[i], round_b) - tangential_acc(f.a[i], round_a));
+    if (held[i].normal_on >= 0 || held[i].edge_edge) {
+      const Vec3 dvel = point_vel(f.b[i], f.b[i].lever) - point_vel(f.a[i], f.a[i].lever);
+      bi += frame_turn(i).cross(tr).dot(dvel);
+    }
+    bt(r) = bi;
+  }
   HeldForces out;
   std::vector<char> local;
   std::vector<char>& active = active_ ? *active_ : local;
   // The forces along directions d (the normal, less friction where a contact slides); false
   // where no method reached an exact solution.
+  const bool large = n + static_cast<int>(t.size()) > kSparseRows;
+  bool slides = false;
+  for (int i = 0; i < n; ++i) slides |= dir[i] != f.frame[i].n;
   auto solve_along = [&](const std::vector<Vec3>& d) -> bool {
     bool ok = true;
-    const Eigen::MatrixXd A = contact_matrix(f, m, d);
     out.friction.assign(static_cast<std::size_t>(n), Vec3::Zero());
+    // A large island: its rows couple only where two contacts share a body, so the forces are
+    // first sought by sparse block pivoting from the last clamped set (held_rows.hpp), which
+    // most evaluations of a stretch keep; the dense solve below, whose work grows as the cube
+    // of the rows, only where that does not settle.
+    if (large) {
+      HeldRows rows{&f, &m, &d, b, sticking, t, bt};
+      Eigen::VectorXd fE;
+      if (solve_held_rows_sparse(rows, active, out.normal, fE, cache_)) {
+        for (std::size_t j = 0; j < sticking.size(); ++j)
+          out.friction[static_cast<std::size_t>(sticking[j])] =
+              fE(2 * j) * t[2 * j] + fE(2 * j + 1) * t[2 * j + 1];
+        return true;
+      }
+      // Beyond kSparseRows rows with friction in the matrix the dense pivots are no way out:
+      // Lemke's method on a struck pyramid's 459 rows took minutes a solve. The caller takes
+      // the reported fallback (below), down to a problem without friction.
+      if (!sticking.empty()) return false;
+      for (int i = 0; i < n; ++i)
+        if (d[i] != f.frame[i].n) return false;
+    }
+    const Eigen::MatrixXd A = contact_matrix(f, m, d);
     // With sliding friction A is not semidefinite, and the LCP may have several solutions: a box
     // sliding flat on its face is held by all four corners, or (as Dantzig's pivoting may find
     // from f = 0) by its two leading ones with the trailing ones accelerating away, a lift that
@@ -368,10 +404,8 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
       // set, redone (at most 4 times) while they disagree.
       Frames g = f;
       std::vector<Vec3> gdir = d;
-      std::vector<Vec3> t(2 * sticking.size());
       for (std::size_t j = 0; j < sticking.size(); ++j) {
         const int i = sticking[j];
-        tangents(f.frame[i].n, t[2 * j], t[2 * j + 1]);
         for (int a = 0; a < 2; ++a) {
           g.frame.push_back(f.frame[i]);
           g.frame.back().n = t[2 * j + a];
@@ -384,31 +418,7 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
         }
       }
       const Eigen::MatrixXd M = contact_matrix(g, m, gdir);
-      // Tangential acceleration of the touching points without contact forces. A polyhedron's
-      // point is material (a + α × r + ω × (ω × r)); a ball's is where it touches, not a
-      // material point, so its slip changes by a + α × r alone (rolling has no slip to turn).
-      // A face's tangents turn with it: (ω_face × t)·(v_pb − v_pa).
       const int e = static_cast<int>(t.size());
-      Eigen::VectorXd bt(e);
-      for (int r = 0; r < e; ++r) {
-        const int i = sticking[static_cast<std::size_t>(r / 2)];
-        const Vec3& tr = t[static_cast<std::size_t>(r)];
-        auto tangential_acc = [&](const SideGeometry& side, bool round) -> Vec3 {
-          if (side.member < 0) return Vec3::Zero();
-          const Free& q = k[side.member];
-          Vec3 acc = q.a + q.alpha.cross(side.lever);
-          if (!round) acc += q.omega.cross(q.omega.cross(side.lever));
-          return acc;
-        };
-        const IslandPair& p = v_.island->pairs[held[i].pair];
-        const bool round_a = round_side(v_.side_body(p.a)), round_b = round_side(v_.side_body(p.b));
-        double bi = tr.dot(tangential_acc(f.b[i], round_b) - tangential_acc(f.a[i], round_a));
-        if (held[i].normal_on >= 0 || held[i].edge_edge) {
-          const Vec3 dvel = point_vel(f.b[i], f.b[i].lever) - point_vel(f.a[i], f.a[i].lever);
-          bi += frame_turn(i).cross(tr).dot(dvel);
-        }
-        bt(r) = bi;
-      }
       Eigen::VectorXd fE = Eigen::VectorXd::Zero(e);
       for (int round = 0; round < 4; ++round) {
         std::vector<int> rows;  // tangent rows (0-based in the tangent block) of pressing ones
@@ -467,9 +477,18 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     // solution and keeps every held contact from sinking in. μ times those normal forces
     // against the slip would not (dice sank 3 mm in a step, whose correction gained 0.2 J);
     // without them the sliding contacts do no work, and the stretch gains no energy.
-    bool slides = false;
-    for (int i = 0; i < n; ++i) slides |= dir[i] != f.frame[i].n;
+    bool solved = false;
     if (slides) {
+      for (int i = 0; i < n; ++i) along[i] = f.frame[i].n;
+      solved = solve_along(along);
+    }
+    // A large island whose sticking contacts have no answer in their modes either (one pulls
+    // when held and sinks when free: a struck box's corner) is solved without friction at all,
+    // sparse, or at worst by the dense pivots on a symmetric semidefinite matrix.
+    if (!solved && large && !sticking.empty()) {
+      sticking.clear();
+      t.clear();
+      bt.resize(0);
       for (int i = 0; i < n; ++i) along[i] = f.frame[i].n;
       solve_along(along);
     }
@@ -676,7 +695,7 @@ void stop_points(const Eigen::MatrixXd& A, const Frames& f, const std::vector<in
   // struck pile: 78 contacts) make A numerically near-singular, and its round-off directions,
   // inverted, gained 0.35 J: an answer whose energy change j·vn + ½ jᵀAj is positive is not
   // applied (the passes go on without it).
-  const Eigen::VectorXd j = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(Ap).solve(rhs);
+  const Eigen::VectorXd j = least_norm_solve(Ap, rhs);
   const double work = -rhs.dot(j);
   if (work + 0.5 * j.dot(Ap * j) > 1e-12 * std::abs(work)) return;
   for (int r = 0; r < q; ++r) {
@@ -932,7 +951,7 @@ bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>
         rhs(r) = 0.0;
       }
     }
-    const Eigen::VectorXd x = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(M).solve(rhs);
+    const Eigen::VectorXd x = least_norm_solve(M, rhs);
     solvable = (M * x - rhs).norm() <= 1e-9 * std::max(rhs.norm(), 1e-300);
     bool inside = solvable;
     for (int i = 0; i < n && inside; ++i) {
@@ -970,7 +989,7 @@ bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>
         K.col(2 * i + a).setZero();
         K(2 * i + a, 2 * i + a) = 1.0;
       }
-  Eigen::VectorXd imp = -Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(K).solve(u);
+  Eigen::VectorXd imp = -least_norm_solve(K, u);
   // Where the joint impulse exists, it left a cone (above): the contacts slide. Otherwise (no
   // pressing contact to turn against) the tangential impulses alone decide.
   bool sticks = !solvable;
@@ -1004,7 +1023,7 @@ void restore_normal_speeds(const IslandView& v, const std::vector<IslandContact>
   const Eigen::MatrixXd A = contact_matrix(f, m, normals);
   Eigen::VectorXd vn(n);
   for (int i = 0; i < n; ++i) vn(i) = f.frame[i].n.dot(relative_velocity(v, s, f, i));
-  const Eigen::VectorXd d = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(A).solve(-vn);
+  const Eigen::VectorXd d = least_norm_solve(A, -vn);
   bool feasible = (A * d + vn).norm() <= 1e-9 * std::max(vn.norm(), 1e-300);
   for (int i = 0; i < n && feasible; ++i)
     feasible = normal_impulse[i] + d(i) >= -1e-12 * std::max(normal_impulse[i], 1e-300);

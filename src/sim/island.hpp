@@ -89,14 +89,21 @@ struct IslandView {
 ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const IslandState& s);
 
 struct Frames;
+class HeldRowsCache;
 
 /// dY/dt of every member: gravity, drag and the contact forces at the held contacts, found by
 /// one LCP over all of them (Baraff's resting contact, coupled across the island).
 class IslandDynamics {
  public:
   IslandDynamics(const IslandView& view, const std::vector<IslandContact>* held,
-                 std::vector<char>* active, long* evaluations, bool* solve_failed)
-      : v_(view), held_(held), active_(active), evaluations_(evaluations), failed_(solve_failed) {}
+                 std::vector<char>* active, long* evaluations, bool* solve_failed,
+                 HeldRowsCache* cache = nullptr)
+      : v_(view),
+        held_(held),
+        active_(active),
+        evaluations_(evaluations),
+        failed_(solve_failed),
+        cache_(cache) {}
 
   std::vector<Rate> operator()(const IslandState& s) const;
   /// What the held contacts exert at a state: per contact, its normal force (N), its static
@@ -126,6 +133,7 @@ class IslandDynamics {
   std::vector<char>* active_;
   long* evaluations_;
   bool* failed_;
+  HeldRowsCache* cache_;  ///< a large island's last sparse factorisation (held_rows.hpp)
 };
 
 /// Integrates an island over h from s with `how.method` (the same schemes as a single body).

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "collide.hpp"
+#include "held_rows.hpp"
 #include "island.hpp"
 #include "number_text.hpp"
 #include "time_of_impact.hpp"
@@ -480,6 +481,7 @@ void World::advance_island(const Island& island, double h) {
   bool solve_failed = false;
   bool settle = false, blind = false;
   std::vector<char> active;
+  HeldRowsCache rows_cache;
   std::vector<std::pair<int, std::uint32_t>> active_of;  // the contacts `active` is for
   // Per pair, how much deeper than it starts a stretch it may go before it is an impact (see
   // "Every pair is watched" below): raised for the rest of the step after an empty event.
@@ -523,7 +525,7 @@ void World::advance_island(const Island& island, double h) {
     for (const IslandContact& c : held) held_ids.emplace_back(c.pair, c.feature);
     if (held_ids != active_of) active.clear();
     active_of = held_ids;
-    const IslandDynamics dynamics(view, &held, &active, &evaluations_, &solve_failed);
+    const IslandDynamics dynamics(view, &held, &active, &evaluations_, &solve_failed, &rows_cache);
     // Static friction inside the stretch holds a sticking contact's slip where it is. Which
     // contacts it can hold is found first (hold_or_slip: a box set on a ramp steeper than atan
     // mu cannot be held); the slip of those it holds is then stopped by an impulse within what

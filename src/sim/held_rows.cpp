@@ -1,0 +1,483 @@
+#include "held_rows.hpp"
+
+#include <Eigen/QR>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+
+namespace tumble {
+namespace {
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+// Refinements of a ridged solve (iterated Tikhonov): x <- x + (K + dI)^-1 (r - K x). Each takes
+// the error in the range of K from its size e to e d/(lambda + d): the ridge alone leaves the
+// split among dependent rows off by d/lambda_min (2e-6 relative on an 8-box tower), two more
+// solves with the same factor take it to round-off.
+constexpr int kRefinements = 3;
+
+// One unknown force of a guess: along `col` at contact `contact` (on b, its opposite on a), its
+// row the relative acceleration along `row`; `slot` is its place in the normal (contact index)
+// or tangential (row of the tangent block) answer.
+struct Unknown {
+  int contact = 0;
+  Vec3 row, col;
+  bool tangent = false;
+  int slot = 0;
+};
+
+// How one side of a row sees its member: the row's measure of the member's acceleration
+// (a 6-vector: linear, angular) and the member's acceleration per unit force of the column.
+struct SideRow {
+  int member = -1;
+  Vec6 measure, response;
+};
+
+// A row's measure of a member's acceleration (linear a, angular α): sign · (row · (a + α × p))
+// = sign · [row; p × row] · [a; α], p the lever of the point it constrains.
+Vec6 measure_of(const Vec3& row, const Vec3& point_lever, double sign) {
+  Vec6 r;
+  r << sign * row, sign * point_lever.cross(row);
+  return r;
+}
+
+// A unit force along col at lever r on a member: its acceleration [col / m; I⁻¹ (r × col)].
+Vec6 response_of(const MassInfo& m, const Vec3& col, const Vec3& lever, double sign) {
+  Vec6 r;
+  r << sign * m.inv_m * col, sign * (m.Iinv * lever.cross(col));
+  return r;
+}
+
+SideRow side_row(const HeldRows& h, const Unknown& u, int side) {
+  const SideGeometry& g = side == 0 ? h.f->a[u.contact] : h.f->b[u.contact];
+  SideRow s;
+  if (g.member < 0) return s;
+  const double sign = side == 0 ? -1.0 : 1.0;
+  s.member = g.member;
+  // A tangent row holds the slip of the touching points (a ball's too): its point is where the
+  // force acts. A normal row constrains the material point (a ball's centre: lever zero).
+  s.measure = measure_of(u.row, u.tangent ? g.lever : g.point_lever, sign);
+  s.response = response_of((*h.m)[g.member], u.col, g.lever, sign);
+  return s;
+}
+
+// One guess: the unknowns of the clamped normal rows and of the sticking contacts among them,
+// solved for their rows at zero. Writes the forces and the members' accelerations they cause.
+struct Guess {
+  std::vector<Unknown> unknowns;
+  Eigen::VectorXd force;
+  std::vector<Vec6> accel;  // per member
+  double largest = 0.0;     // the largest |A| entry of the guess's matrix
+  double ridge = 0.0;       // the diagonal added to it
+};
+
+}  // namespace
+
+// The last fresh symmetric guess: its unknowns, their rows and right-hand side, and the
+// factorisation of its ridged matrix K. A guess whose unknowns are some of those, with the same
+// rows to the bit, is that system with the others held at zero: u = y − Z (Zᵀ_R)⁻¹ y_R, where
+// y = K⁻¹ r and Z = K⁻¹ E_R the columns of the unknowns R left out (bordering), which costs a
+// solve per unknown left out instead of a factorisation.
+struct HeldRowsCache::Impl {
+  bool valid = false;
+  std::vector<Unknown> unknowns;
+  std::vector<std::array<SideRow, 2>> sides;
+  Eigen::VectorXd rhs, y;
+  std::vector<int> normal_index;   // contact -> its normal row's unknown, -1 where none
+  std::vector<int> tangent_index;  // 2 contact + a -> its tangent row a's unknown, or -1
+  std::vector<Eigen::VectorXd> z;                // K⁻¹ e_k, computed once k is left out
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  Eigen::SparseMatrix<double> K;  // ridged
+  double largest = 0.0, ridge = 0.0;
+};
+
+HeldRowsCache::HeldRowsCache() : impl(std::make_unique<Impl>()) {}
+HeldRowsCache::~HeldRowsCache() = default;
+
+namespace {
+
+bool same(const SideRow& a, const SideRow& b) {
+  return a.member == b.member && a.measure == b.measure && a.response == b.response;
+}
+
+// Where the cached factorisation solves this guess (its unknowns a subset of the cached ones,
+// rows identical), the forces from it.
+bool solve_from_cache(HeldRowsCache::Impl& c, const std::vector<std::array<SideRow, 2>>& sides,
+                      const Eigen::VectorXd& rhs, Guess& g) {
+  if (!c.valid) return false;
+  const int u = static_cast<int>(g.unknowns.size());
+  std::vector<int> at(static_cast<std::size_t>(u));
+  std::vector<char> kept(c.unknowns.size(), 0);
+  for (int k = 0; k < u; ++k) {
+    const Unknown& q = g.unknowns[static_cast<std::size_t>(k)];
+    const std::vector<int>& index = q.tangent ? c.tangent_index : c.normal_index;
+    const int key = q.tangent ? 2 * q.contact + (q.slot & 1) : q.slot;
+    if (key >= static_cast<int>(index.size())) return false;
+    const int j = index[static_cast<std::size_t>(key)];
+    if (j < 0 || rhs(k) != c.rhs(j) || !same(sides[k][0], c.sides[j][0]) ||
+        !same(sides[k][1], c.sides[j][1]) || c.unknowns[j].col != q.col || c.unknowns[j].row != q.row) {
+      return false;
+    }
+    at[static_cast<std::size_t>(k)] = j;
+    kept[static_cast<std::size_t>(j)] = 1;
+  }
+  std::vector<int> out;
+  for (std::size_t j = 0; j < kept.size(); ++j)
+    if (!kept[j]) out.push_back(static_cast<int>(j));
+  // The reduced system's solve: d = K⁻¹ r − Z C⁻¹ (K⁻¹ r)_R, r zero on the rows left out.
+  const int r = static_cast<int>(out.size());
+  Eigen::LDLT<Eigen::MatrixXd> C;
+  if (r > 0) {
+    Eigen::MatrixXd Cm(r, r);
+    for (int a = 0; a < r; ++a) {
+      Eigen::VectorXd& z = c.z[static_cast<std::size_t>(out[a])];
+      if (z.size() == 0) {
+        Eigen::VectorXd e = Eigen::VectorXd::Zero(c.y.size());
+        e(out[a]) = 1.0;
+        z = c.ldlt.solve(e);
+      }
+    }
+    for (int a = 0; a < r; ++a)
+      for (int b = 0; b < r; ++b) Cm(a, b) = c.z[static_cast<std::size_t>(out[b])](out[a]);
+    C.compute(Cm);
+  }
+  auto reduced = [&](const Eigen::VectorXd& y) {
+    Eigen::VectorXd d = y;
+    if (r == 0) return d;
+    Eigen::VectorXd yr(r);
+    for (int a = 0; a < r; ++a) yr(a) = y(out[a]);
+    const Eigen::VectorXd mu = C.solve(yr);
+    for (int b = 0; b < r; ++b) d -= mu(b) * c.z[static_cast<std::size_t>(out[b])];
+    return d;
+  };
+  Eigen::VectorXd full = reduced(c.y);
+  for (int it = 0; it < kRefinements; ++it) {
+    // r − K x over the kept rows, K unridged: (K + δI) x − δ x.
+    Eigen::VectorXd res = c.rhs - (c.K * full - c.ridge * full);
+    for (int j : out) res(j) = 0.0;
+    full += reduced(c.ldlt.solve(res));
+  }
+  for (int k = 0; k < u; ++k) g.force(k) = full(at[static_cast<std::size_t>(k)]);
+  g.largest = c.largest;
+  g.ridge = c.ridge;
+  return g.force.allFinite();
+}
+
+bool solve_guess(const HeldRows& h, const std::vector<char>& clamped,
+                 const std::vector<char>& loose, Guess& g, HeldRowsCache::Impl* cache) {
+  const int n = static_cast<int>(h.b.size());
+  g.unknowns.clear();
+  for (int i = 0; i < n; ++i)
+    if (clamped[static_cast<std::size_t>(i)])
+      g.unknowns.push_back({i, h.f->frame[i].n, (*h.dir)[i], false, i});
+  for (std::size_t j = 0; j < h.sticking.size(); ++j)
+    if (clamped[static_cast<std::size_t>(h.sticking[j])] &&
+        !loose[static_cast<std::size_t>(h.sticking[j])])
+      for (int a = 0; a < 2; ++a) {
+        const Vec3& t = h.t[2 * j + static_cast<std::size_t>(a)];
+        g.unknowns.push_back({h.sticking[j], t, t, true, 2 * static_cast<int>(j) + a});
+      }
+  const int u = static_cast<int>(g.unknowns.size());
+  const std::size_t members = h.m->size();
+  g.accel.assign(members, Vec6::Zero());
+  g.force = Eigen::VectorXd::Zero(u);
+  g.largest = 0.0;
+  if (u == 0) return true;
+  std::vector<std::array<SideRow, 2>> sides(static_cast<std::size_t>(u));
+  Eigen::VectorXd rhs(u);
+  bool symmetric = true;
+  for (int k = 0; k < u; ++k) {
+    const Unknown& q = g.unknowns[static_cast<std::size_t>(k)];
+    symmetric &= q.row == q.col;
+    rhs(k) = -(q.tangent ? h.bt(q.slot) : h.b(q.slot));
+    for (int side = 0; side < 2; ++side) sides[static_cast<std::size_t>(k)][side] = side_row(h, q, side);
+  }
+  if (!(symmetric && cache && solve_from_cache(*cache, sides, rhs, g))) {
+    // Per member, the rows that see it: A(r, c) sums measure_r · response_c over the members
+    // both rows touch, so an island's matrix has an entry only where two contacts share a body.
+    std::vector<std::vector<int>> by_member(members);
+    for (int k = 0; k < u; ++k)
+      for (const SideRow& s : sides[static_cast<std::size_t>(k)])
+        if (s.member >= 0) by_member[static_cast<std::size_t>(s.member)].push_back(k);
+    auto side_on = [&](int k, int member) -> const SideRow& {
+      const auto& two = sides[static_cast<std::size_t>(k)];
+      return two[0].member == member ? two[0] : two[1];
+    };
+    std::vector<Eigen::Triplet<double>> entries;
+    for (std::size_t k = 0; k < members; ++k)
+      for (int r : by_member[k])
+        for (int c : by_member[k])
+          entries.emplace_back(r, c, side_on(r, static_cast<int>(k)).measure.dot(
+                                         side_on(c, static_cast<int>(k)).response));
+    Eigen::SparseMatrix<double> A(u, u);
+    A.setFromTriplets(entries.begin(), entries.end());
+    double diag = 0.0;
+    for (int k = 0; k < A.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+        g.largest = std::max(g.largest, std::abs(it.value()));
+        if (it.row() == it.col()) diag = std::max(diag, std::abs(it.value()));
+      }
+    g.ridge = 1e-8 * std::max(diag, 1e-300);
+    for (int k = 0; k < u; ++k) A.coeffRef(k, k) += g.ridge;
+    if (symmetric) {
+      HeldRowsCache::Impl local;
+      HeldRowsCache::Impl& c = cache ? *cache : local;
+      c.valid = false;
+      c.ldlt.compute(A);
+      if (c.ldlt.info() != Eigen::Success) return false;
+      g.force = c.ldlt.solve(rhs);
+      const Eigen::VectorXd plain = g.force;  // K⁻¹ r, ridged: what bordering starts from
+      for (int it = 0; it < kRefinements; ++it)
+        g.force += c.ldlt.solve(rhs - (A * g.force - g.ridge * g.force));
+      if (cache) {
+        c.valid = true;
+        c.unknowns = g.unknowns;
+        c.sides = sides;
+        c.rhs = rhs;
+        c.y = plain;
+        c.K = A;
+        c.largest = g.largest;
+        c.ridge = g.ridge;
+        c.z.assign(static_cast<std::size_t>(u), Eigen::VectorXd());
+        c.normal_index.assign(static_cast<std::size_t>(n), -1);
+        c.tangent_index.assign(2 * static_cast<std::size_t>(n), -1);
+        for (int k = 0; k < u; ++k) {
+          const Unknown& q = g.unknowns[static_cast<std::size_t>(k)];
+          if (q.tangent)
+            c.tangent_index[2 * static_cast<std::size_t>(q.contact) + (q.slot & 1)] = k;
+          else
+            c.normal_index[static_cast<std::size_t>(q.slot)] = k;
+        }
+      }
+    } else {
+      Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+      lu.analyzePattern(A);
+      lu.factorize(A);
+      if (lu.info() != Eigen::Success) return false;
+      g.force = lu.solve(rhs);
+      for (int it = 0; it < kRefinements; ++it)
+        g.force += lu.solve(rhs - (A * g.force - g.ridge * g.force));
+    }
+    if (!g.force.allFinite()) return false;
+  }
+  for (int k = 0; k < u; ++k)
+    for (const SideRow& s : sides[static_cast<std::size_t>(k)])
+      if (s.member >= 0) g.accel[static_cast<std::size_t>(s.member)] += g.force(k) * s.response;
+  return true;
+}
+
+// The relative acceleration along `row` of contact i's points with the guess's forces, less
+// the free part.
+double forced(const HeldRows& h, const Guess& g, int i, const Vec3& row, bool tangent) {
+  double w = 0.0;
+  for (int side = 0; side < 2; ++side) {
+    const SideGeometry& s = side == 0 ? h.f->a[i] : h.f->b[i];
+    if (s.member < 0) continue;
+    w += measure_of(row, tangent ? s.lever : s.point_lever, side == 0 ? -1.0 : 1.0)
+             .dot(g.accel[static_cast<std::size_t>(s.member)]);
+  }
+  return w;
+}
+
+enum class Verdict { Solved, Changed, Failed };
+
+// Guesses tried before the dense solve takes over.
+constexpr int kMaxRounds = 16;
+
+// Checks a solved guess against the LCP; where it is not a solution, `next` is the block
+// pivot (clamped rows with a negative force freed, violated free rows clamped).
+Verdict check(const HeldRows& h, const Guess& g, const std::vector<char>& clamped, double tol_w,
+              std::vector<char>& next, Eigen::VectorXd& w) {
+  const int n = static_cast<int>(h.b.size());
+  // The ridge moves every row by up to its diagonal times the forces, and the forces by about
+  // as much relative to their size: rows and forces that near zero count as zero (else the
+  // pivots cycle on a row that carries nothing and does not move, clamping and freeing it).
+  const double largest_force = g.force.size() ? g.force.cwiseAbs().maxCoeff() : 0.0;
+  const double tol_f = std::max(tol_w / std::max(g.largest, 1e-300), 1e-8 * largest_force);
+  const double tol_free = std::max(tol_w, 10.0 * g.ridge * largest_force);
+  next = clamped;
+  bool changed = false, off = false;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  for (std::size_t k = 0; k < g.unknowns.size(); ++k) {
+    const Unknown& q = g.unknowns[k];
+    if (q.tangent) {
+      const double wt = h.bt(q.slot) + forced(h, g, q.contact, q.row, true);
+      off |= !(std::abs(wt) <= 1e3 * tol_w);
+    } else {
+      x(q.slot) = g.force(static_cast<Eigen::Index>(k));
+    }
+  }
+  w.resize(n);
+  for (int i = 0; i < n; ++i) {
+    w(i) = h.b(i) + forced(h, g, i, h.f->frame[i].n, false);
+    if (clamped[static_cast<std::size_t>(i)]) {
+      if (x(i) < -tol_f) {
+        next[static_cast<std::size_t>(i)] = 0, changed = true;
+      } else {
+        off |= !(std::abs(w(i)) <= 1e3 * tol_w);
+      }
+    } else if (w(i) < -tol_free) {
+      next[static_cast<std::size_t>(i)] = 1, changed = true;
+    }
+  }
+  if (changed) return Verdict::Changed;
+  return off ? Verdict::Failed : Verdict::Solved;
+}
+
+void write_answer(const HeldRows& h, const Guess& g, Eigen::VectorXd& normal,
+                  Eigen::VectorXd& tangential) {
+  normal = Eigen::VectorXd::Zero(h.b.size());
+  tangential = Eigen::VectorXd::Zero(h.bt.size());
+  for (std::size_t k = 0; k < g.unknowns.size(); ++k) {
+    const Unknown& q = g.unknowns[k];
+    const double x = g.force(static_cast<Eigen::Index>(k));
+    if (q.tangent)
+      tangential(q.slot) = x;
+    else
+      normal(q.slot) = std::max(x, 0.0);
+  }
+}
+
+// Which normal rows press, by projected Gauss–Seidel on the normal rows alone (the problem
+// without static friction): x_i <- max(0, x_i − w_i / A_ii), row by row, the members'
+// accelerations kept up to date. It converges on the symmetric problem from any start, where
+// block pivots from a poor start can wander (a struck 10-row pyramid's 557 contacts: still
+// 115–250 rows changing after 64 rounds); its pressing set is then their start.
+std::vector<char> pressing_by_gauss_seidel(const HeldRows& h, int sweeps) {
+  const int n = static_cast<int>(h.b.size());
+  std::vector<std::array<SideRow, 2>> sides(static_cast<std::size_t>(n));
+  Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    const Unknown u{i, h.f->frame[static_cast<std::size_t>(i)].n,
+                    (*h.dir)[static_cast<std::size_t>(i)], false, i};
+    auto& s = sides[static_cast<std::size_t>(i)];
+    s = {side_row(h, u, 0), side_row(h, u, 1)};
+    for (const SideRow& r : s)
+      if (r.member >= 0) diag(i) += r.measure.dot(r.response);
+  }
+  std::vector<Vec6> acc(h.m->size(), Vec6::Zero());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  for (int sweep = 0; sweep < sweeps; ++sweep)
+    for (int i = 0; i < n; ++i) {
+      if (!(diag(i) > 0.0)) continue;
+      const auto& s = sides[static_cast<std::size_t>(i)];
+      double w = h.b(i);
+      for (const SideRow& r : s)
+        if (r.member >= 0) w += r.measure.dot(acc[static_cast<std::size_t>(r.member)]);
+      const double dx = std::max(0.0, x(i) - w / diag(i)) - x(i);
+      if (dx == 0.0) continue;
+      x(i) += dx;
+      for (const SideRow& r : s)
+        if (r.member >= 0) acc[static_cast<std::size_t>(r.member)] += dx * r.response;
+    }
+  std::vector<char> pressing(static_cast<std::size_t>(n), 0);
+  for (int i = 0; i < n; ++i) pressing[static_cast<std::size_t>(i)] = x(i) > 0.0;
+  return pressing;
+}
+
+// Gauss–Seidel sweeps for a start of the block pivots.
+constexpr int kSweeps = 400;
+
+}  // namespace
+
+bool solve_held_rows_sparse(const HeldRows& h, std::vector<char>& active, Eigen::VectorXd& normal,
+                            Eigen::VectorXd& tangential, HeldRowsCache* cache) {
+  HeldRowsCache::Impl* c = cache ? cache->impl.get() : nullptr;
+  const std::size_t n = static_cast<std::size_t>(h.b.size());
+  if (active.size() != n) active.assign(n, 1);
+  double scale = h.b.size() ? h.b.cwiseAbs().maxCoeff() : 0.0;
+  if (h.bt.size()) scale = std::max(scale, h.bt.cwiseAbs().maxCoeff());
+  const double tol_w = 1e-9 * std::max(scale, 1e-300);
+  std::vector<char> clamped = active, next;
+  // No clamped row to start from (a new set of contacts, or a last solve that found none) while
+  // some row is pressed: all of them clamped, the dense solve's first guess too.
+  if (std::find(clamped.begin(), clamped.end(), 1) == clamped.end() && (h.b.array() < 0.0).any())
+    clamped.assign(n, 1);
+  Guess g;
+  Eigen::VectorXd w;
+  // Block pivots while they make progress (fewer rows to change than the best so far within 3
+  // rounds); after that one row at a time, the first of those to change (Murty's least-index
+  // rule; Júdice and Pires' safeguard: block pivoting alone can cycle).
+  std::size_t best = n + 1;
+  int stalled = 0;
+  // A sticking contact that pulls when clamped (its tangent rows with it) and sinks when free
+  // has no answer in its mode at this state: it slips as it presses, which the modes fixed at
+  // the stretch's start (hold_or_slip) do not know. Freed a second time in single pivots, it
+  // is clamped without its tangent rows (pressing without friction, as the dense solve's
+  // answer has it when its pressing set and its normal LCP still disagree).
+  std::vector<char> loose(n, 0);
+  std::vector<int> freed(n, 0);
+  for (int round = 0; round < 2 * kMaxRounds; ++round) {
+    // Not settled from the last clamped set: once, without static friction in the problem,
+    // the pivots start again from Gauss–Seidel's pressing rows.
+    if (round == kMaxRounds) {
+      if (!h.sticking.empty()) break;
+      clamped = pressing_by_gauss_seidel(h, kSweeps);
+      best = n + 1, stalled = 0;
+      std::fill(freed.begin(), freed.end(), 0);
+    }
+    if (!solve_guess(h, clamped, loose, g, c)) return false;
+    const Verdict v = check(h, g, clamped, tol_w, next, w);
+    if (v == Verdict::Failed) return false;
+    if (v == Verdict::Changed) {
+      std::size_t changes = 0;
+      for (std::size_t i = 0; i < n; ++i) changes += next[i] != clamped[i];
+      if (changes < best && stalled < 3) {
+        best = changes, stalled = 0;
+      } else if (++stalled >= 3) {
+        for (std::size_t i = 0; i < n; ++i)
+          if (next[i] != clamped[i]) {
+            if (!next[i] && ++freed[i] >= 2 && !loose[i]) {
+              loose[i] = 1;  // stays clamped, its tangent rows dropped
+              break;
+            }
+            clamped[i] = next[i];
+            break;
+          }
+        continue;
+      }
+      clamped.swap(next);
+      continue;
+    }
+    write_answer(h, g, normal, tangential);
+    // Rows free at w = 0 (a contact that carries nothing and does not move away) leave the
+    // split among dependent rows to the pivoting: a domino's edge held by one end or both.
+    // As the dense solve does (canonical_split), they join the clamped set where the answer
+    // with them is still a solution, so that a symmetric pose is held symmetrically.
+    std::vector<char> with = clamped;
+    bool degenerate = false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!clamped[i] && std::abs(w(static_cast<Eigen::Index>(i))) <= tol_w) with[i] = 1, degenerate = true;
+    if (degenerate && solve_guess(h, with, loose, g, c) &&
+        check(h, g, with, tol_w, next, w) == Verdict::Solved) {
+      write_answer(h, g, normal, tangential);
+      clamped.swap(with);
+    }
+    active = clamped;
+    return true;
+  }
+  return false;
+}
+
+Eigen::VectorXd least_norm_solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs) {
+  const Eigen::Index n = M.rows();
+  if (n > kSparseRows) {
+    Eigen::SparseMatrix<double> S = M.sparseView();
+    const double diag = std::max(M.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+    for (Eigen::Index k = 0; k < n; ++k) S.coeffRef(k, k) += 1e-8 * diag;
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(S);
+    if (ldlt.info() == Eigen::Success) {
+      Eigen::VectorXd x = ldlt.solve(rhs);
+      for (int it = 0; it < kRefinements; ++it) x += ldlt.solve(rhs - M * x);
+      if (x.allFinite()) return x;
+    }
+  }
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(M);
+  return cod.solve(rhs);
+}
+
+}  // namespace tumble

@@ -1,0 +1,159 @@
+#include "../../../src/sim/held_rows.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/QR>
+
+namespace tumble {
+namespace {
+
+// A tower of `count` unit cubes (1 kg, I = m/6) standing on the floor, each resting on the one
+// below by its four corners: 4 count contacts, every one sticking (two tangent rows each), so
+// 12 count rows (the sparse solve is called directly, whatever the size).
+struct Tower {
+  Frames f;
+  std::vector<MassInfo> m;
+  std::vector<Vec3> dir;
+  HeldRows rows;
+
+  explicit Tower(int count, double g = 9.81) {
+    const double corners[4][2] = {{-0.5, -0.5}, {0.5, -0.5}, {-0.5, 0.5}, {0.5, 0.5}};
+    for (int k = 0; k < count; ++k) m.push_back({1.0, Mat3::Identity() * 6.0});
+    Eigen::VectorXd b(4 * count);
+    for (int k = 0; k < count; ++k)
+      for (const auto& c : corners) {
+        ContactFrame fr{};
+        fr.pa = fr.pb = Vec3::Zero();
+        fr.n = Vec3::UnitY();
+        fr.ra = Vec3(c[0], 0.5, c[1]);  // from the centre of the box below (unused: the floor)
+        fr.rb = Vec3(c[0], -0.5, c[1]);
+        SideGeometry a, bside;
+        if (k > 0) a = {k - 1, fr.ra, fr.ra};
+        bside = {k, fr.rb, fr.rb};
+        f.frame.push_back(fr);
+        f.a.push_back(a);
+        f.b.push_back(bside);
+        f.round_pair.push_back(false);
+        dir.push_back(fr.n);
+        // Without contact forces every box falls alike: only the floor's rows approach.
+        b(static_cast<Eigen::Index>(f.frame.size() - 1)) = k == 0 ? -g : 0.0;
+      }
+    rows.f = &f;
+    rows.m = &m;
+    rows.dir = &dir;
+    rows.b = b;
+    for (int i = 0; i < 4 * count; ++i) {
+      rows.sticking.push_back(i);
+      rows.t.push_back(Vec3::UnitX());
+      rows.t.push_back(Vec3::UnitZ());
+    }
+    rows.bt = Eigen::VectorXd::Zero(8 * count);
+  }
+};
+
+TEST(HeldRows, ATowerOfBoxesIsHeldByEqualCornerForcesWithoutFriction) {
+  // Statics: the interface under box k carries the weight of the boxes from k up, a quarter at
+  // each corner (the symmetric split of four dependent rows), and nothing pulls sideways. The
+  // ridge (1e-8 of the largest diagonal) and three refinements leave the range exact to round-off;
+  // the split among dependent rows keeps the right-hand side's round-off divided by the ridge,
+  // ~1e-16 / 1e-8: 1e-7 of the largest force.
+  const int count = 8;
+  Tower t(count);
+  std::vector<char> active;
+  Eigen::VectorXd normal, tangential;
+  ASSERT_TRUE(solve_held_rows_sparse(t.rows, active, normal, tangential));
+  const double top = count * 9.81 / 4.0;
+  for (int k = 0; k < count; ++k)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(normal(4 * k + c), (count - k) * 9.81 / 4.0, 1e-7 * top) << k << " " << c;
+  EXPECT_LT(tangential.cwiseAbs().maxCoeff(), 1e-7 * top);
+  for (char a : active) EXPECT_TRUE(a);
+}
+
+TEST(HeldRows, PivotsBegunFarFromTheAnswerSettleFromGaussSeidelsPressingRows) {
+  // A frictionless tower of 40 boxes begun from only the top box's corners clamped: each round of
+  // block pivots clamps one more interface from the floor up (4 rows a round, so they stall into
+  // single pivots), far more rounds than the pivots are given. They start again from projected
+  // Gauss–Seidel's pressing rows, which on this tower are all of them, and settle at once.
+  const int count = 40;
+  Tower t(count);
+  t.rows.sticking.clear();
+  t.rows.t.clear();
+  t.rows.bt.resize(0);
+  std::vector<char> active(4 * count, 0);
+  for (int c = 0; c < 4; ++c) active[static_cast<std::size_t>(4 * (count - 1) + c)] = 1;
+  Eigen::VectorXd normal, tangential;
+  ASSERT_TRUE(solve_held_rows_sparse(t.rows, active, normal, tangential));
+  const double top = count * 9.81 / 4.0;
+  for (int k = 0; k < count; ++k)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(normal(4 * k + c), (count - k) * 9.81 / 4.0, 1e-7 * top) << k << " " << c;
+  for (char a : active) EXPECT_TRUE(a);
+}
+
+TEST(HeldRows, ARowsLessSomeFromTheCachedFactorisationEqualsAFreshSolve) {
+  // hold_or_slip frees sticking contacts one at a time at one state: the same rows less two
+  // tangent rows. The bordered solve from the cached factorisation must give the fresh answer.
+  Tower t(8);
+  HeldRowsCache cache;
+  std::vector<char> active;
+  Eigen::VectorXd normal, tangential;
+  // A sideways push on the top box (its four corners' slip along x), so that the tangent rows
+  // carry force.
+  for (int c = 0; c < 4; ++c) t.rows.bt(2 * (4 * 7 + c)) = 0.3;
+  ASSERT_TRUE(solve_held_rows_sparse(t.rows, active, normal, tangential, &cache));
+  HeldRows fewer = t.rows;
+  fewer.sticking.erase(fewer.sticking.begin() + 5);
+  fewer.t.erase(fewer.t.begin() + 10, fewer.t.begin() + 12);
+  Eigen::VectorXd bt(fewer.bt.size() - 2);
+  bt << t.rows.bt.head(10), t.rows.bt.tail(t.rows.bt.size() - 12);
+  fewer.bt = bt;
+  std::vector<char> active_cached = active, active_fresh = active;
+  Eigen::VectorXd n_cached, t_cached, n_fresh, t_fresh;
+  ASSERT_TRUE(solve_held_rows_sparse(fewer, active_cached, n_cached, t_cached, &cache));
+  ASSERT_TRUE(solve_held_rows_sparse(fewer, active_fresh, n_fresh, t_fresh));
+  const double scale = n_fresh.cwiseAbs().maxCoeff();
+  EXPECT_LT((n_cached - n_fresh).cwiseAbs().maxCoeff(), 1e-7 * scale);
+  EXPECT_LT((t_cached - t_fresh).cwiseAbs().maxCoeff(), 1e-7 * scale);
+  EXPECT_GT(t_fresh.cwiseAbs().maxCoeff(), 1e-3);  // the push is carried by friction
+}
+
+TEST(HeldRows, ABoxThatLiftsOffIsFreedAndTheRestSolved) {
+  // The top box pulled up harder than gravity (15 m/s² away from the free fall of the box under
+  // it, which the tower's support turns into 15 − 9.81 away from a box at rest): its four corners
+  // must separate (no pull), the tower below still held. Begun from all clamped, the block pivots
+  // free them.
+  Tower t(8);
+  for (int c = 0; c < 4; ++c) t.rows.b(4 * 7 + c) = 15.0;
+  std::vector<char> active;
+  Eigen::VectorXd normal, tangential;
+  ASSERT_TRUE(solve_held_rows_sparse(t.rows, active, normal, tangential));
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_EQ(normal(4 * 7 + c), 0.0);
+    EXPECT_FALSE(active[static_cast<std::size_t>(4 * 7 + c)]);
+  }
+  const double top = 8 * 9.81 / 4.0;
+  for (int k = 0; k < 7; ++k)
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(normal(4 * k + c), (7 - k) * 9.81 / 4.0, 1e-7 * top);
+}
+
+TEST(HeldRows, LeastNormSolveMatchesTheDecompositionOnALargeDependentSystem) {
+  // Above kSparseRows rows least_norm_solve takes the ridged sparse factorisation: on a
+  // consistent system with dependent rows it must give the least-norm answer to ~1e-9.
+  const int n = 2 * kSparseRows;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n / 2);
+  for (int i = 0; i < n; ++i) {
+    J(i, (i / 2) % (n / 2)) = 1.0;
+    J(i, (i / 2 + 1) % (n / 2)) = 0.5;
+  }
+  const Eigen::MatrixXd M = J * J.transpose();  // rank n/2: every row twice
+  Eigen::VectorXd x0 = Eigen::VectorXd::LinSpaced(n, -1.0, 1.0);
+  const Eigen::VectorXd rhs = M * x0;
+  const Eigen::VectorXd x = least_norm_solve(M, rhs);
+  const Eigen::VectorXd exact = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(M).solve(rhs);
+  EXPECT_LT((x - exact).cwiseAbs().maxCoeff(), 1e-7 * exact.cwiseAbs().maxCoeff());
+  EXPECT_LT((M * x - rhs).norm(), 1e-8 * rhs.norm());
+}
+
+}  // namespace
+}  // namespace tumble
