@@ -10,15 +10,12 @@
 #include <memory>
 
 namespace tumble {
-namespace {
+// Named, not anonymous: HeldRowsCache::Impl (declared in the header) holds them, and a member
+// of an anonymous type in a class with linkage is an error under unity builds
+// (-Wsubobject-linkage: held_rows.cpp is then an included file).
+namespace held_rows_detail {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
-
-// Refinements of a ridged solve (iterated Tikhonov): x <- x + (K + dI)^-1 (r - K x). Each takes
-// the error in the range of K from its size e to e d/(lambda + d): the ridge alone leaves the
-// split among dependent rows off by d/lambda_min (2e-6 relative on an 8-box tower), two more
-// solves with the same factor take it to round-off.
-constexpr int kRefinements = 3;
 
 // One unknown force of a guess: along `col` at contact `contact` (on b, its opposite on a), its
 // row the relative acceleration along `row`; `slot` is its place in the normal (contact index)
@@ -34,8 +31,23 @@ struct Unknown {
 // (a 6-vector: linear, angular) and the member's acceleration per unit force of the column.
 struct SideRow {
   int member = -1;
-  Vec6 measure, response;
+  Vec6 measure = Vec6::Zero(), response = Vec6::Zero();
 };
+
+}  // namespace held_rows_detail
+
+namespace {
+
+using held_rows_detail::SideRow;
+using held_rows_detail::Unknown;
+using held_rows_detail::Vec6;
+
+// Refinements of a ridged solve (iterated Tikhonov): x <- x + (K + dI)^-1 (r - K x). Each takes
+// the error in the range of K from its size e to e d/(lambda + d): the ridge alone leaves the
+// split among dependent rows off by d/lambda_min (2e-6 relative on an 8-box tower), two more
+// solves with the same factor take it to round-off.
+constexpr int kRefinements = 3;
+
 
 // A row's measure of a member's acceleration (linear a, angular α): sign · (row · (a + α × p))
 // = sign · [row; p × row] · [a; α], p the lever of the point it constrains.
@@ -84,8 +96,8 @@ struct Guess {
 // solve per unknown left out instead of a factorisation.
 struct HeldRowsCache::Impl {
   bool valid = false;
-  std::vector<Unknown> unknowns;
-  std::vector<std::array<SideRow, 2>> sides;
+  std::vector<held_rows_detail::Unknown> unknowns;
+  std::vector<std::array<held_rows_detail::SideRow, 2>> sides;
   Eigen::VectorXd rhs, y;
   std::vector<int> normal_index;   // contact -> its normal row's unknown, -1 where none
   std::vector<int> tangent_index;  // 2 contact + a -> its tangent row a's unknown, or -1
