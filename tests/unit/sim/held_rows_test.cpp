@@ -51,6 +51,15 @@ struct Tower {
   }
 };
 
+// Statics of a tower of `count` boxes: the interface under box k carries the weight of the boxes
+// from k up, a quarter at each corner; to 1e-7 of the largest force (see the first test).
+void expect_tower_statics(const Eigen::VectorXd& normal, int count) {
+  const double top = count * 9.81 / 4.0;
+  for (int k = 0; k < count; ++k)
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(normal(4 * k + c), (count - k) * 9.81 / 4.0, 1e-7 * top) << k << " " << c;
+}
+
 TEST(HeldRows, ATowerOfBoxesIsHeldByEqualCornerForcesWithoutFriction) {
   // Statics: the interface under box k carries the weight of the boxes from k up, a quarter at
   // each corner (the symmetric split of four dependent rows), and nothing pulls sideways. The
@@ -62,11 +71,8 @@ TEST(HeldRows, ATowerOfBoxesIsHeldByEqualCornerForcesWithoutFriction) {
   std::vector<char> active;
   Eigen::VectorXd normal, tangential;
   ASSERT_TRUE(solve_held_rows_sparse(t.rows, active, normal, tangential));
-  const double top = count * 9.81 / 4.0;
-  for (int k = 0; k < count; ++k)
-    for (int c = 0; c < 4; ++c)
-      EXPECT_NEAR(normal(4 * k + c), (count - k) * 9.81 / 4.0, 1e-7 * top) << k << " " << c;
-  EXPECT_LT(tangential.cwiseAbs().maxCoeff(), 1e-7 * top);
+  expect_tower_statics(normal, count);
+  EXPECT_LT(tangential.cwiseAbs().maxCoeff(), 1e-7 * count * 9.81 / 4.0);
   for (char a : active) EXPECT_TRUE(a);
 }
 
@@ -84,10 +90,7 @@ TEST(HeldRows, PivotsBegunFarFromTheAnswerSettleFromGaussSeidelsPressingRows) {
   for (int c = 0; c < 4; ++c) active[static_cast<std::size_t>(4 * (count - 1) + c)] = 1;
   Eigen::VectorXd normal, tangential;
   ASSERT_TRUE(solve_held_rows_sparse(t.rows, active, normal, tangential));
-  const double top = count * 9.81 / 4.0;
-  for (int k = 0; k < count; ++k)
-    for (int c = 0; c < 4; ++c)
-      EXPECT_NEAR(normal(4 * k + c), (count - k) * 9.81 / 4.0, 1e-7 * top) << k << " " << c;
+  expect_tower_statics(normal, count);
   for (char a : active) EXPECT_TRUE(a);
 }
 
