@@ -1,4 +1,5 @@
 #include "held_rows.hpp"
+#include "mprgp.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SparseCholesky>
@@ -105,6 +106,9 @@ struct HeldRowsCache::Impl {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
   Eigen::SparseMatrix<double> K;  // ridged
   double largest = 0.0, ridge = 0.0;
+  // The last problems with tangent rows whose pivots did not settle (with sliding friction and
+  // without, the fallback's first try): their sticking contacts and which contacts slide.
+  std::vector<std::pair<std::vector<int>, std::vector<char>>> unsettled;
 };
 
 HeldRowsCache::HeldRowsCache() : impl(std::make_unique<Impl>()) {}
@@ -354,56 +358,131 @@ void write_answer(const HeldRows& h, const Guess& g, Eigen::VectorXd& normal,
   }
 }
 
-// Which normal rows press, by projected Gauss–Seidel on the normal rows alone (the problem
-// without static friction): x_i <- max(0, x_i − w_i / A_ii), row by row, the members'
-// accelerations kept up to date. It converges on the symmetric problem from any start, where
-// block pivots from a poor start can wander (a struck 10-row pyramid's 557 contacts: still
-// 115–250 rows changing after 64 rounds); its pressing set is then their start.
-std::vector<char> pressing_by_gauss_seidel(const HeldRows& h, int sweeps) {
-  const int n = static_cast<int>(h.b.size());
-  std::vector<std::array<SideRow, 2>> sides(static_cast<std::size_t>(n));
-  Eigen::VectorXd diag = Eigen::VectorXd::Zero(n);
-  for (int i = 0; i < n; ++i) {
-    const Unknown u{i, h.f->frame[static_cast<std::size_t>(i)].n,
-                    (*h.dir)[static_cast<std::size_t>(i)], false, i};
-    auto& s = sides[static_cast<std::size_t>(i)];
-    s = {side_row(h, u, 0), side_row(h, u, 1)};
-    for (const SideRow& r : s)
-      if (r.member >= 0) diag(i) += r.measure.dot(r.response);
-  }
-  std::vector<Vec6> acc(h.m->size(), Vec6::Zero());
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  for (int sweep = 0; sweep < sweeps; ++sweep)
-    for (int i = 0; i < n; ++i) {
-      if (!(diag(i) > 0.0)) continue;
-      const auto& s = sides[static_cast<std::size_t>(i)];
-      double w = h.b(i);
-      for (const SideRow& r : s)
-        if (r.member >= 0) w += r.measure.dot(acc[static_cast<std::size_t>(r.member)]);
-      const double dx = std::max(0.0, x(i) - w / diag(i)) - x(i);
-      if (dx == 0.0) continue;
-      x(i) += dx;
-      for (const SideRow& r : s)
-        if (r.member >= 0) acc[static_cast<std::size_t>(r.member)] += dx * r.response;
+// The normal rows alone (the problem without static friction, symmetric where no contact
+// slides) as a bound-constrained convex quadratic program: minimise q(x) = ½ xᵀ(A + ρI)x + bᵀx
+// over x >= 0, whose gradient A x + b + ρx is the rows' accelerations w. Its minimiser solves the
+// ridged LCP (ρ: the sparse guesses' ridge, 1e-8 of A's largest diagonal), uniquely. Solved by
+// MPRGP (Dostál, "Optimal Quadratic Programming Algorithms", 2009, ch. 5: conjugate gradients
+// on the rows that press, expansion steps that clamp many rows at once, proportioning steps that
+// free many at once), with products by A taken through the members' accelerations, as A's
+// entries are only where two rows share a body. Block pivots from a poor start can wander (a
+// struck 10-row pyramid's 557 contacts: still 100–260 rows changing after 32 rounds, from the
+// last clamped set or from 400 sweeps of projected Gauss–Seidel).
+class NormalQp {
+ public:
+  explicit NormalQp(const HeldRows& h) : h_(h), n_(static_cast<int>(h.b.size())) {
+    sides_.resize(static_cast<std::size_t>(n_));
+    diag_ = Eigen::VectorXd::Zero(n_);
+    std::vector<std::vector<int>> by_member(h.m->size());
+    for (int i = 0; i < n_; ++i) {
+      const Unknown u{i, h.f->frame[static_cast<std::size_t>(i)].n,
+                      (*h.dir)[static_cast<std::size_t>(i)], false, i};
+      auto& two = sides_[static_cast<std::size_t>(i)];
+      two = {side_row(h, u, 0), side_row(h, u, 1)};
+      for (const SideRow& r : two)
+        if (r.member >= 0) {
+          diag_(i) += r.measure.dot(r.response);
+          by_member[static_cast<std::size_t>(r.member)].push_back(i);
+        }
     }
-  std::vector<char> pressing(static_cast<std::size_t>(n), 0);
-  for (int i = 0; i < n; ++i) pressing[static_cast<std::size_t>(i)] = x(i) > 0.0;
-  return pressing;
-}
+    ridge_ = 1e-8 * std::max(diag_.maxCoeff(), 1e-300);
+    // Solved in y = D^½ x, D the diagonal of A + ρI (Jacobi scaling: a 50 kg ball's rows and a
+    // 1 kg box's then weigh alike); the bounds stay y >= 0.
+    scale_.resize(n_);
+    for (int i = 0; i < n_; ++i) scale_(i) = diag_(i) > 0.0 ? 1.0 / std::sqrt(diag_(i) + ridge_) : 0.0;
+    // A bound on the scaled |A + ρI| (Gershgorin: the largest row sum of |entries|), for the
+    // expansion steps' length ᾱ <= 2 / |A|.
+    Eigen::VectorXd row_sum = ridge_ * scale_.cwiseAbs2();
+    for (std::size_t k = 0; k < by_member.size(); ++k)
+      for (int r : by_member[k])
+        for (int c : by_member[k])
+          row_sum(r) += scale_(r) * scale_(c) *
+                        std::abs(on(r, static_cast<int>(k)).measure.dot(
+                            on(c, static_cast<int>(k)).response));
+    step_ = 1.0 / std::max(row_sum.maxCoeff(), 1e-300);
+    acc_.assign(h.m->size(), Vec6::Zero());
+  }
 
-// Gauss–Seidel sweeps for a start of the block pivots.
-constexpr int kSweeps = 400;
+  // out = D^-½ (A + ρI) D^-½ y.
+  void times(const Eigen::VectorXd& y, Eigen::VectorXd& out) {
+    std::fill(acc_.begin(), acc_.end(), Vec6::Zero());
+    for (int i = 0; i < n_; ++i)
+      if (y(i) != 0.0)
+        for (const SideRow& r : sides_[static_cast<std::size_t>(i)])
+          if (r.member >= 0)
+            acc_[static_cast<std::size_t>(r.member)] += scale_(i) * y(i) * r.response;
+    out.resize(n_);
+    for (int i = 0; i < n_; ++i) {
+      double v = ridge_ * scale_(i) * y(i);
+      for (const SideRow& r : sides_[static_cast<std::size_t>(i)])
+        if (r.member >= 0) v += r.measure.dot(acc_[static_cast<std::size_t>(r.member)]);
+      out(i) = scale_(i) * v;
+    }
+  }
+
+  // Minimises from `force` (the rows' forces) until every row's projected gradient is within
+  // tol in the rows' units (w), or `iterations` run out; returns the largest reached.
+  double minimise(Eigen::VectorXd& force, double tol, int iterations) {
+    Eigen::VectorXd x(n_), unit(n_);  // scaled: x = D^½ force
+    for (int i = 0; i < n_; ++i) {
+      x(i) = scale_(i) > 0.0 ? force(i) / scale_(i) : 0.0;
+      unit(i) = scale_(i) > 0.0 ? 1.0 / scale_(i) : 0.0;
+    }
+    const double reached = minimise_bounded_qp(
+        [this](const Eigen::VectorXd& y, Eigen::VectorXd& out) { times(y, out); },
+        scale_.cwiseProduct(h_.b), unit, step_, x, tol, iterations);
+    force = scale_.cwiseProduct(x);
+    return reached;
+  }
+
+ private:
+  const SideRow& on(int row, int member) const {
+    const auto& two = sides_[static_cast<std::size_t>(row)];
+    return two[0].member == member ? two[0] : two[1];
+  }
+
+  const HeldRows& h_;
+  int n_;
+  std::vector<std::array<SideRow, 2>> sides_;
+  Eigen::VectorXd diag_, scale_;
+  double ridge_ = 0.0, step_ = 0.0;
+  std::vector<Vec6> acc_;
+};
+
+// MPRGP's iterations for a start of the block pivots, or for the answer where they do not
+// settle.
+constexpr int kQpIterations = 4000;
+
+// The minimiser of the normal rows' quadratic program from zero; its largest projected
+// gradient. Out of line: inlined into solve_held_rows_sparse, GCC 12 reports Eigen's frees
+// there as used after free (-Wuse-after-free), falsely.
+[[gnu::noinline]] double minimise_normal_rows(const HeldRows& h, double tol, Eigen::VectorXd& x) {
+  NormalQp qp(h);
+  x = Eigen::VectorXd::Zero(h.b.size());
+  return qp.minimise(x, tol, kQpIterations);
+}
 
 }  // namespace
 
 bool solve_held_rows_sparse(const HeldRows& h, std::vector<char>& active, Eigen::VectorXd& normal,
-                            Eigen::VectorXd& tangential, HeldRowsCache* cache) {
+                            Eigen::VectorXd& tangential, HeldRowsCache* cache,
+                            double* iterative_residual) {
   HeldRowsCache::Impl* c = cache ? cache->impl.get() : nullptr;
+  if (iterative_residual) *iterative_residual = 0.0;
   const std::size_t n = static_cast<std::size_t>(h.b.size());
   if (active.size() != n) active.assign(n, 1);
   double scale = h.b.size() ? h.b.cwiseAbs().maxCoeff() : 0.0;
   if (h.bt.size()) scale = std::max(scale, h.bt.cwiseAbs().maxCoeff());
   const double tol_w = 1e-9 * std::max(scale, 1e-300);
+  // A problem with tangent rows whose pivots did not settle at the last state (a sticking
+  // contact that pulls when held and sinks when free: its mode, fixed at the stretch's start,
+  // has no answer) is not tried again at the next: hold_or_slip's rounds and the stretch's
+  // evaluations ask it at nearby states, each time for 16 rounds of factorisations in vain.
+  std::vector<char> sliding(n, 0);
+  for (std::size_t i = 0; i < n; ++i) sliding[i] = (*h.dir)[i] != h.f->frame[i].n;
+  if (c && !h.sticking.empty())
+    for (const auto& [sticking, slides] : c->unsettled)
+      if (sticking == h.sticking && slides == sliding) return false;
   std::vector<char> clamped = active, next;
   // No clamped row to start from (a new set of contacts, or a last solve that found none) while
   // some row is pressed: all of them clamped, the dense solve's first guess too.
@@ -423,18 +502,36 @@ bool solve_held_rows_sparse(const HeldRows& h, std::vector<char>& active, Eigen:
   // answer has it when its pressing set and its normal LCP still disagree).
   std::vector<char> loose(n, 0);
   std::vector<int> freed(n, 0);
+  // Without static friction in the problem, MPRGP's minimiser of the ridged quadratic program
+  // (NormalQp): the pivots' second start, and the answer where they do not settle from it.
+  bool qp = false;
+  Eigen::VectorXd x_qp;
+  double qp_reached = INFINITY;
+  auto iterative = [&]() -> bool {
+    if (!qp || !iterative_residual) return false;
+    normal = x_qp;
+    tangential = Eigen::VectorXd::Zero(h.bt.size());
+    for (std::size_t i = 0; i < n; ++i) active[i] = x_qp(static_cast<Eigen::Index>(i)) > 0.0;
+    *iterative_residual = qp_reached / std::max(scale, 1e-300);
+    return true;
+  };
   for (int round = 0; round < 2 * kMaxRounds; ++round) {
-    // Not settled from the last clamped set: once, without static friction in the problem,
-    // the pivots start again from Gauss–Seidel's pressing rows.
+    // Not settled from the last clamped set: once, where there are no tangent rows, the pivots
+    // start again from the rows that press in the quadratic program's minimiser.
     if (round == kMaxRounds) {
       if (!h.sticking.empty()) break;
-      clamped = pressing_by_gauss_seidel(h, kSweeps);
+      bool symmetric = true;
+      for (std::size_t i = 0; i < n; ++i) symmetric &= (*h.dir)[i] == h.f->frame[i].n;
+      if (!symmetric) break;  // sliding friction: A unsymmetric, no quadratic program
+      qp = true;
+      qp_reached = minimise_normal_rows(h, tol_w, x_qp);
+      for (std::size_t i = 0; i < n; ++i) clamped[i] = x_qp(static_cast<Eigen::Index>(i)) > 0.0;
       best = n + 1, stalled = 0;
       std::fill(freed.begin(), freed.end(), 0);
     }
-    if (!solve_guess(h, clamped, loose, g, c)) return false;
+    if (!solve_guess(h, clamped, loose, g, c)) return iterative();
     const Verdict v = check(h, g, clamped, tol_w, next, w);
-    if (v == Verdict::Failed) return false;
+    if (v == Verdict::Failed) return iterative();
     if (v == Verdict::Changed) {
       std::size_t changes = 0;
       for (std::size_t i = 0; i < n; ++i) changes += next[i] != clamped[i];
@@ -472,7 +569,11 @@ bool solve_held_rows_sparse(const HeldRows& h, std::vector<char>& active, Eigen:
     active = clamped;
     return true;
   }
-  return false;
+  if (c && !h.sticking.empty()) {
+    if (c->unsettled.size() >= 4) c->unsettled.erase(c->unsettled.begin());
+    c->unsettled.emplace_back(h.sticking, sliding);
+  }
+  return iterative();
 }
 
 Eigen::VectorXd least_norm_solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs) {

@@ -55,6 +55,9 @@ class HeldRowsCache {
   ~HeldRowsCache();
   struct Impl;
   std::unique_ptr<Impl> impl;
+  /// The largest residual (relative to |b|) of an iterative answer taken since it was made:
+  /// 0 where every answer was exact, or the iterations reached the pivots' tolerance.
+  double iterative_residual = 0.0;
 };
 
 /// Solves the held rows by block principal pivoting (Júdice and Pires) on sparse matrices,
@@ -68,11 +71,17 @@ class HeldRowsCache {
 /// rounds, a factorisation fails or the answer is not accepted: the caller then solves densely
 /// (only where there is no friction in the matrix: beyond kSparseRows rows the dense pivots
 /// take minutes, and the island takes its reported frictionless fallback). Where the pivots
-/// do not settle from `active` and there are no tangent rows, they start once more from the
-/// rows projected Gauss–Seidel finds pressing.
+/// do not settle from `active` and there are no tangent rows (and no sliding friction: A
+/// symmetric), they start once more from the rows that press at the minimiser of the problem's
+/// quadratic program, found by MPRGP (mprgp.hpp) to the same tolerance or 4 000 iterations;
+/// where they do not settle from there either, that minimiser is the answer, and
+/// `iterative_residual` (where given) its largest projected gradient relative to |b| (else 0).
+/// A problem with tangent rows whose pivots did not settle is remembered in the cache (the
+/// last four: their sticking contacts and sliding ones) and not tried again.
 bool solve_held_rows_sparse(const HeldRows& rows, std::vector<char>& active,
                             Eigen::VectorXd& normal, Eigen::VectorXd& tangential,
-                            HeldRowsCache* cache = nullptr);
+                            HeldRowsCache* cache = nullptr,
+                            double* iterative_residual = nullptr);
 
 /// The least-norm solution (least squares where M x = rhs has none) of a symmetric positive
 /// semidefinite M: a complete orthogonal decomposition up to kSparseRows rows; beyond, where its

@@ -367,7 +367,11 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     if (large) {
       HeldRows rows{&f, &m, &d, b, sticking, t, bt};
       Eigen::VectorXd fE;
-      if (solve_held_rows_sparse(rows, active, out.normal, fE, cache_)) {
+      double residual = 0.0;
+      const bool solved = solve_held_rows_sparse(rows, active, out.normal, fE, cache_, &residual);
+      if (cache_ && residual > 1e-9)
+        cache_->iterative_residual = std::max(cache_->iterative_residual, residual);
+      if (solved) {
         for (std::size_t j = 0; j < sticking.size(); ++j)
           out.friction[static_cast<std::size_t>(sticking[j])] =
               fE(2 * j) * t[2 * j] + fE(2 * j + 1) * t[2 * j + 1];

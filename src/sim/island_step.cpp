@@ -893,6 +893,14 @@ void World::advance_island(const Island& island, double h) {
                           "reached (sliding friction); those forces were solved without the "
                           "friction of the contacts that slide",
                       smaller_step_fix());
+  if (rows_cache.iterative_residual > 0.0 && !diagnostics_.recur("contact_solve_iterative"))
+    diagnostics_.warn("contact_solve_iterative", time_,
+                      "the contact forces of the island of body \"" + bodies_[first].name() +
+                          "\" were solved iteratively (MPRGP), to a residual of " +
+                          fmt("%.2g", rows_cache.iterative_residual) +
+                          " of the largest free acceleration (exact: 1e-9); its contacts may "
+                          "drift by that much",
+                      smaller_step_fix());
   write_back();
   for (int body : island.members) {
     check_state(static_cast<std::size_t>(body));

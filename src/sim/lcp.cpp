@@ -1,4 +1,5 @@
 #include "lcp.hpp"
+#include "mprgp.hpp"
 
 #include <Eigen/QR>
 #include <algorithm>
@@ -364,8 +365,50 @@ bool lemke(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
 
 }  // namespace
 
+namespace {
+
+// Above kLargeLcpRows rows with a symmetric A (a struck pile's impact, or its held forces
+// without friction): MPRGP on the quadratic program of A with a diagonal of 1e-10 of its
+// largest added (mprgp.hpp), Jacobi-scaled, from f = 0, to 1e-9 |b| (the pivoting's tolerance)
+// within kLargeLcpIterations. Dantzig's pivots solve a dense subsystem each (a 557-row impact:
+// minutes), Lemke's method pivots a dense tableau. True where the tolerance was reached; the
+// answer is kept either way (q only decreases from f = 0: an impact's energy change b·f + ½fᵀAf
+// is q, never above zero).
+constexpr int kLargeLcpIterations = 4000;
+
+bool symmetric(const Eigen::MatrixXd& A) {
+  return (A - A.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * A.cwiseAbs().maxCoeff();
+}
+
+bool solve_large(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
+                 std::vector<char>& active) {
+  const Eigen::Index n = b.size();
+  const double ridge = 1e-10 * std::max(A.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+  Eigen::VectorXd scale(n), unit(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double d = A(i, i) + ridge;
+    scale(i) = A(i, i) > 0.0 ? 1.0 / std::sqrt(d) : 0.0;
+    unit(i) = A(i, i) > 0.0 ? std::sqrt(d) : 0.0;
+  }
+  Eigen::MatrixXd M = scale.asDiagonal() * A * scale.asDiagonal();
+  M.diagonal() += ridge * scale.cwiseAbs2();
+  const double step = 1.0 / std::max(M.cwiseAbs().rowwise().sum().maxCoeff(), 1e-300);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  const double tol = 1e-9 * std::max(b.cwiseAbs().maxCoeff(), 1e-300);
+  const double reached = minimise_bounded_qp(
+      [&M](const Eigen::VectorXd& y, Eigen::VectorXd& out) { out.noalias() = M * y; },
+      scale.cwiseProduct(b), unit, step, x, tol, kLargeLcpIterations);
+  f = scale.cwiseProduct(x);
+  active.assign(static_cast<std::size_t>(n), 0);
+  for (Eigen::Index i = 0; i < n; ++i) active[static_cast<std::size_t>(i)] = f(i) > 0.0;
+  return reached <= tol;
+}
+
+}  // namespace
+
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                         std::vector<char>& active, bool ridge_on_stall) {
+  if (b.size() > kLargeLcpRows && symmetric(A)) return solve_large(A, b, f, active);
   bool stalled = !pivot(A, b, f, active);
   if (!stalled && !grossly_off(A, b, f)) return canonical_split(A, b, f, active), true;
   // Contact matrices are only semidefinite: four coplanar points of a face, or a light body
@@ -400,7 +443,7 @@ bool solve_lcp_dissipative(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, E
     return !(work + 0.5 * x.dot(A * x) > 1e-12 * std::abs(work));
   };
   const bool exact = solve_lcp_pivoting(A, b, f, active, ridge_on_stall);
-  if (dissipates(f)) return exact;
+  if (dissipates(f) || (b.size() > kLargeLcpRows && symmetric(A))) return exact;
   const std::size_t n = static_cast<std::size_t>(b.size());
   // Then the same with the diagonal of 1e-10 of the largest one (see solve_lcp_pivoting): a
   // definite matrix, whose LCP has one solution that Dantzig's method reaches; then Lemke's.

@@ -29,6 +29,12 @@ LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b);
 /// budget or A (with sliding friction, not symmetric) has no solution it can reach; `f` is then
 /// the projected Gauss–Seidel answer, and the caller reports it. With `ridge_on_stall`, a
 /// stalled solve is first retried with a diagonal of 1e-10 of A's largest added (see lcp.cpp).
+/// Above this many rows a symmetric problem is solved iteratively (lcp.cpp: solve_large), to
+/// the pivoting's tolerance where MPRGP reaches it within its iterations (false where not; the
+/// answer it reached is kept); the pivots' dense subsystem solves cost minutes there. The size
+/// where an island's held forces go sparse (held_rows.hpp: kSparseRows).
+inline constexpr int kLargeLcpRows = 256;
+
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                         std::vector<char>& active, bool ridge_on_stall = false);
 

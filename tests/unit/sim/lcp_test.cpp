@@ -1,4 +1,5 @@
 #include "../../../src/sim/lcp.hpp"
+#include "../../../src/sim/mprgp.hpp"
 
 #include <gtest/gtest.h>
 
@@ -160,6 +161,87 @@ TEST(LcpPivoting, DependentRowsOfAFaceEndComplementary) {
   }
   EXPECT_NEAR(f(0), f(2), 1e-9 * f.cwiseAbs().maxCoeff());
   EXPECT_NEAR(f(1), f(3), 1e-9 * f.cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+// A column of `count` unit masses on the floor, each contact seen by two coincident rows (a
+// face's dependent corners): the Delassus matrix J M⁻¹ Jᵀ of 2 count rows, rank count.
+Eigen::MatrixXd column_of_masses(int count) {
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2 * count, count);
+  for (int k = 0; k < count; ++k)
+    for (int r = 0; r < 2; ++r) {
+      J(2 * k + r, k) = 1.0;
+      if (k > 0) J(2 * k + r, k - 1) = -1.0;
+    }
+  return J * J.transpose();
+}
+
+TEST(LcpIterative, MprgpReachesThePivotingAnswerOnARandomDefiniteProblem) {
+  // minimise_bounded_qp (mprgp.hpp) on a definite problem with a unique answer, some rows
+  // pressing and some separating: it must reach the tolerance asked (1e-10 of |b|) and the
+  // pivoting's answer to ~1e-8.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const int n = 40;
+  Eigen::MatrixXd J(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) J(i, j) = normal(rng);
+  const Eigen::MatrixXd A = J * J.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b(i) = normal(rng);
+  Eigen::VectorXd exact;
+  std::vector<char> active;
+  ASSERT_TRUE(solve_lcp_pivoting(A, b, exact, active));
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  const Eigen::VectorXd unit = Eigen::VectorXd::Ones(n);
+  const double step = 1.0 / A.cwiseAbs().rowwise().sum().maxCoeff();
+  const double tol = 1e-10 * b.cwiseAbs().maxCoeff();
+  const double reached = minimise_bounded_qp(
+      [&A](const Eigen::VectorXd& y, Eigen::VectorXd& out) { out = A * y; }, b, unit, step, x,
+      tol, 10000);
+  EXPECT_LE(reached, tol);
+  EXPECT_LT((x - exact).cwiseAbs().maxCoeff(), 1e-8 * exact.cwiseAbs().maxCoeff());
+  int pressing = 0;
+  for (int i = 0; i < n; ++i) pressing += exact(i) > 0.0;
+  EXPECT_GT(pressing, 0);
+  EXPECT_LT(pressing, n);  // both kinds of row
+}
+
+TEST(LcpIterative, ALargeImpactIsSolvedIterativelyAndNeverGainsEnergy) {
+  // Above kLargeLcpRows rows a symmetric problem is solved by MPRGP: a column of 150 masses
+  // (300 dependent rows), b the contacts' normal speeds (an inelastic impact). The bottom 100
+  // fall onto the floor and each other; the top 50 fly up (the 101st leaves at 200 m/s, the
+  // rest spread at 0.5 m/s). The answer must be complementary to the pivoting's tolerance, its
+  // energy change b·f + ½ fᵀA f (the kinetic energy's) <= 0, the falling ones stopped, the
+  // flying ones untouched, and the coincident rows must share their impulse evenly (the
+  // ridge's least norm).
+  const int count = 150;
+  const Eigen::MatrixXd A = column_of_masses(count);
+  ASSERT_GT(A.rows(), kLargeLcpRows);
+  Eigen::VectorXd b(2 * count);
+  for (int k = 0; k < count; ++k)
+    b(2 * k) = b(2 * k + 1) = k < 100 ? -1.0 - 0.01 * k : (k == 100 ? 200.0 : 0.5);
+  Eigen::VectorXd f;
+  std::vector<char> active;
+  EXPECT_TRUE(solve_lcp_dissipative(A, b, f, active));
+  const Eigen::VectorXd w = A * f + b;
+  const double tol = 1e-9 * b.cwiseAbs().maxCoeff();
+  for (int i = 0; i < b.size(); ++i) {
+    EXPECT_GE(f(i), 0.0);
+    EXPECT_GE(w(i), -1e3 * tol) << i;
+    if (f(i) > 0.0) {
+      EXPECT_LT(std::abs(w(i)), 1e3 * tol) << i;
+    }
+  }
+  EXPECT_LE(b.dot(f) + 0.5 * f.dot(A * f), 0.0);
+  for (int k = 0; k < count; ++k) EXPECT_NEAR(f(2 * k), f(2 * k + 1), 1e-6 * f.maxCoeff());
+  for (int k = 0; k < 100; ++k) EXPECT_GT(f(2 * k), 0.0) << k;
+  for (int k = 100; k < count; ++k) EXPECT_EQ(f(2 * k), 0.0) << k;
 }
 
 }  // namespace
