@@ -106,13 +106,24 @@ struct HeldRowsCache::Impl {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
   Eigen::SparseMatrix<double> K;  // ridged
   double largest = 0.0, ridge = 0.0;
-  // The last problems with tangent rows whose pivots did not settle (with sliding friction and
-  // without, the fallback's first try): their sticking contacts and which contacts slide.
-  std::vector<std::pair<std::vector<int>, std::vector<char>>> unsettled;
 };
 
 HeldRowsCache::HeldRowsCache() : impl(std::make_unique<Impl>()) {}
 HeldRowsCache::~HeldRowsCache() = default;
+
+bool HeldRowsCache::unsettled(const std::vector<int>& sticking,
+                              const std::vector<char>& sliding) const {
+  for (const auto& [st, sl] : unsettled_)
+    if (st == sticking && sl == sliding) return true;
+  return false;
+}
+
+void HeldRowsCache::remember_unsettled(const std::vector<int>& sticking,
+                                       const std::vector<char>& sliding) {
+  if (unsettled(sticking, sliding)) return;
+  if (unsettled_.size() >= 4) unsettled_.erase(unsettled_.begin());
+  unsettled_.emplace_back(sticking, sliding);
+}
 
 namespace {
 
@@ -480,9 +491,7 @@ bool solve_held_rows_sparse(const HeldRows& h, std::vector<char>& active, Eigen:
   // evaluations ask it at nearby states, each time for 16 rounds of factorisations in vain.
   std::vector<char> sliding(n, 0);
   for (std::size_t i = 0; i < n; ++i) sliding[i] = (*h.dir)[i] != h.f->frame[i].n;
-  if (c && !h.sticking.empty())
-    for (const auto& [sticking, slides] : c->unsettled)
-      if (sticking == h.sticking && slides == sliding) return false;
+  if (cache && !h.sticking.empty() && cache->unsettled(h.sticking, sliding)) return false;
   std::vector<char> clamped = active, next;
   // No clamped row to start from (a new set of contacts, or a last solve that found none) while
   // some row is pressed: all of them clamped, the dense solve's first guess too.
@@ -569,10 +578,7 @@ bool solve_held_rows_sparse(const HeldRows& h, std::vector<char>& active, Eigen:
     active = clamped;
     return true;
   }
-  if (c && !h.sticking.empty()) {
-    if (c->unsettled.size() >= 4) c->unsettled.erase(c->unsettled.begin());
-    c->unsettled.emplace_back(h.sticking, sliding);
-  }
+  if (cache && !h.sticking.empty()) cache->remember_unsettled(h.sticking, sliding);
   return iterative();
 }
 

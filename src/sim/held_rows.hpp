@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "island.hpp"
@@ -58,6 +59,17 @@ class HeldRowsCache {
   /// The largest residual (relative to |b|) of an iterative answer taken since it was made:
   /// 0 where every answer was exact, or the iterations reached the pivots' tolerance.
   double iterative_residual = 0.0;
+
+  /// Whether a problem with friction in it (its sticking contacts, and per contact whether it
+  /// slides) was remembered as one no solve reached: a sticking contact that pulls when held
+  /// and sinks when free has no answer in the modes fixed at the stretch's start, and
+  /// hold_or_slip's rounds and the stretch's evaluations ask it again at nearby states, each
+  /// time for every round of pivots in vain. The last four are remembered.
+  bool unsettled(const std::vector<int>& sticking, const std::vector<char>& sliding) const;
+  void remember_unsettled(const std::vector<int>& sticking, const std::vector<char>& sliding);
+
+ private:
+  std::vector<std::pair<std::vector<int>, std::vector<char>>> unsettled_;
 };
 
 /// Solves the held rows by block principal pivoting (Júdice and Pires) on sparse matrices,

@@ -359,6 +359,7 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
   for (int i = 0; i < n; ++i) slides |= dir[i] != f.frame[i].n;
   auto solve_along = [&](const std::vector<Vec3>& d) -> bool {
     bool ok = true;
+    out.normal.resize(0);  // no answer yet
     out.friction.assign(static_cast<std::size_t>(n), Vec3::Zero());
     // A large island: its rows couple only where two contacts share a body, so the forces are
     // first sought by sparse block pivoting from the last clamped set (held_rows.hpp), which
@@ -384,6 +385,14 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
       for (int i = 0; i < n; ++i)
         if (d[i] != f.frame[i].n) return false;
     }
+    // A problem with friction that no solve reached at a nearby state of this step is not
+    // tried again (HeldRowsCache::unsettled): Dantzig's and then Lemke's pivots on a struck
+    // pile's 150 contacts cost seconds an evaluation before the fallback.
+    std::vector<char> sliding_now(static_cast<std::size_t>(n), 0);
+    for (int i = 0; i < n; ++i) sliding_now[static_cast<std::size_t>(i)] = d[i] != f.frame[i].n;
+    const bool friction = !sticking.empty() ||
+                          std::find(sliding_now.begin(), sliding_now.end(), 1) != sliding_now.end();
+    if (friction && cache_ && cache_->unsettled(sticking, sliding_now)) return false;
     const Eigen::MatrixXd A = contact_matrix(f, m, d);
     // With sliding friction A is not semidefinite, and the LCP may have several solutions: a box
     // sliding flat on its face is held by all four corners, or (as Dantzig's pivoting may find
@@ -469,6 +478,7 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
         out.friction[static_cast<std::size_t>(sticking[j])] =
             fE(2 * j) * t[2 * j] + fE(2 * j + 1) * t[2 * j + 1];
     }
+    if (!ok && friction && cache_) cache_->remember_unsettled(sticking, sliding_now);
     return ok;
   };
   std::vector<Vec3> along = dir;
@@ -489,7 +499,8 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     // A large island whose sticking contacts have no answer in their modes either (one pulls
     // when held and sinks when free: a struck box's corner) is solved without friction at all,
     // sparse, or at worst by the dense pivots on a symmetric semidefinite matrix.
-    if (!solved && large && !sticking.empty()) {
+    // So is an island whose last try was a problem remembered as unsettled (no answer).
+    if (!solved && !sticking.empty() && (large || out.normal.size() != n)) {
       sticking.clear();
       t.clear();
       bt.resize(0);
