@@ -143,6 +143,22 @@ TEST(HeldRows, ABoxThatLiftsOffIsFreedAndTheRestSolved) {
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(normal(4 * k + c), (7 - k) * 9.81 / 4.0, 1e-7 * top);
 }
 
+TEST(HeldRows, TheCacheRemembersTheLastFourUnsettledFrictionProblems) {
+  // A problem is its sticking contacts and which contacts slide; both must match. The oldest of
+  // five is forgotten, and remembering one again does not push another out.
+  HeldRowsCache cache;
+  const std::vector<char> none(6, 0), first(6, 0), second = {1, 0, 0, 0, 0, 0};
+  for (int k = 0; k < 4; ++k) cache.remember_unsettled({k}, none);
+  cache.remember_unsettled({0}, none);
+  EXPECT_TRUE(cache.unsettled({0}, none));
+  EXPECT_FALSE(cache.unsettled({0}, second));
+  EXPECT_FALSE(cache.unsettled({0, 1}, none));
+  cache.remember_unsettled({4}, second);
+  EXPECT_FALSE(cache.unsettled({0}, none));
+  for (int k = 1; k < 4; ++k) EXPECT_TRUE(cache.unsettled({k}, first));
+  EXPECT_TRUE(cache.unsettled({4}, second));
+}
+
 TEST(HeldRows, LeastNormSolveMatchesTheDecompositionOnALargeDependentSystem) {
   // Above kSparseRows rows least_norm_solve takes the ridged sparse factorisation: on a
   // consistent system with dependent rows it must give the least-norm answer to ~1e-9.
