@@ -129,11 +129,6 @@ Manifold round_polyhedron(const RigidBody& a, const Pose& pa, const RigidBody& b
   return m;
 }
 
-double round_polyhedron_separation(const RigidBody& a, const Pose& pa, const RigidBody& b,
-                                   const Pose& pb) {
-  return closest_on_polyhedron(b, pb, world_vertices(b, pb), pa.x).distance - radius_of(a);
-}
-
 // --- polyhedra: the separating-axis test ----------------------------------------------------
 
 struct FaceQuery {
@@ -197,12 +192,23 @@ EdgeQuery query_edges(const RigidBody& a, const Pose& pa, const std::vector<Vec3
 }
 
 double polyhedra_separation(const RigidBody& a, const Pose& pa, const RigidBody& b,
-                            const Pose& pb) {
+                            const Pose& pb, Vec3* axis) {
   const std::vector<Vec3> wa = world_vertices(a, pa), wb = world_vertices(b, pb);
-  const double fa = query_faces(a, pa, wa, wb).separation;
-  if (fa > 0.0) return std::max(fa, query_faces(b, pb, wb, wa).separation);
-  const double fb = query_faces(b, pb, wb, wa).separation;
-  return std::max({fa, fb, query_edges(a, pa, wa, b, pb, wb).separation});
+  const FaceQuery fa = query_faces(a, pa, wa, wb);
+  const FaceQuery fb = query_faces(b, pb, wb, wa);
+  // The edge axes only where a's faces do not already separate the two (every axis's gap is a
+  // lower bound of the distance).
+  const EdgeQuery ee = fa.separation > 0.0 ? EdgeQuery{} : query_edges(a, pa, wa, b, pb, wb);
+  const double best = std::max({fa.separation, fb.separation, ee.separation});
+  if (axis) {
+    if (best == fa.separation)
+      *axis = pa.R * a.faces()[static_cast<std::size_t>(fa.face)].normal;
+    else if (best == fb.separation)
+      *axis = -(pb.R * b.faces()[static_cast<std::size_t>(fb.face)].normal);
+    else
+      *axis = ee.axis;
+  }
+  return best;
 }
 
 struct ClipPoint {
@@ -370,12 +376,25 @@ Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const
 
 }  // namespace
 
-double separation(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb) {
-  if (is_round(a) && is_round(b))
-    return (pb.x - pa.x).norm() - radius_of(a) - radius_of(b);
-  if (is_round(a)) return round_polyhedron_separation(a, pa, b, pb);
-  if (is_round(b)) return round_polyhedron_separation(b, pb, a, pa);
-  return polyhedra_separation(a, pa, b, pb);
+double separation(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
+                  Vec3* axis) {
+  if (is_round(a) && is_round(b)) {
+    const Vec3 d = pb.x - pa.x;
+    const double length = d.norm();
+    if (axis) *axis = length > 0.0 ? Vec3(d / length) : Vec3(Vec3::UnitY());
+    return length - radius_of(a) - radius_of(b);
+  }
+  if (is_round(a)) {
+    const Closest q = closest_on_polyhedron(b, pb, world_vertices(b, pb), pa.x);
+    if (axis) *axis = -q.normal;
+    return q.distance - radius_of(a);
+  }
+  if (is_round(b)) {
+    const Closest q = closest_on_polyhedron(a, pa, world_vertices(a, pa), pb.x);
+    if (axis) *axis = q.normal;
+    return q.distance - radius_of(b);
+  }
+  return polyhedra_separation(a, pa, b, pb, axis);
 }
 
 Manifold collide(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,

@@ -54,7 +54,10 @@ struct Manifold {
 /// Signed separation of bodies a and b at these poses: positive = the gap (a lower bound of the
 /// distance for two polyhedra, exact for spheres and at contact), negative = the overlap depth
 /// along the best separating axis. Continuous in the poses: the gap function of impacts.
-double separation(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb);
+/// `axis`, where given, receives that axis (unit, from a towards b): the two bodies' projections
+/// on it are `separation` apart, so while neither moves along it by the rest, they do not meet.
+double separation(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
+                  Vec3* axis = nullptr);
 
 /// The manifold of a and b: the points whose separation is at most `margin` (none when the
 /// pair is farther apart).
