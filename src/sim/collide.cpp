@@ -354,7 +354,8 @@ Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const
   // and a face gives the whole support polygon where an edge gives one point.
   const double tol = 1e-3 * std::min(a.bounding_radius(), b.bounding_radius());
   const double face_best = std::max(fa.separation, fb.separation);
-  if (ee.edge_a >= 0 && ee.separation > face_best + tol) {
+  const double edge_tol = 1e-9 * std::min(a.bounding_radius(), b.bounding_radius());
+  auto edge_contact = [&] {
     Vec3 a0, a1, b0, b1, on_a, on_b;
     support_edge(a, wa, pa.R * a.edge_directions()[ee.edge_a], ee.axis, a0, a1);
     support_edge(b, wb, pb.R * b.edge_directions()[ee.edge_b], -ee.axis, b0, b1);
@@ -369,9 +370,17 @@ Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const
                    0x40000000u | (static_cast<std::uint32_t>(ee.edge_a) << 8) |
                        static_cast<std::uint32_t>(ee.edge_b)};
     return m;
-  }
-  if (fb.separation > fa.separation + tol) return swapped(face_contact(b, pb, wb, fb.face, a, pa, wa, margin));
-  return face_contact(a, pa, wa, fa.face, b, pb, wb, margin);
+  };
+  if (ee.edge_a >= 0 && ee.separation > face_best + edge_tol) return edge_contact();
+  const Manifold face = fb.separation > fa.separation + tol
+                            ? swapped(face_contact(b, pb, wb, fb.face, a, pa, wa, margin))
+                            : face_contact(a, pa, wa, fa.face, b, pb, wb, margin);
+  // A face within the preference of the edges whose clipped region is empty: two edges
+  // crossing (two tilted dice meeting edge on), whose best axis is their cross product. The
+  // face gave no point where the separating axes found the pair touching, and the pair went
+  // on through itself unheld, every impact found on it empty.
+  if (face.count == 0 && ee.edge_a >= 0 && ee.separation <= margin) return edge_contact();
+  return face;
 }
 
 }  // namespace

@@ -113,5 +113,61 @@ TEST(NarrowPhase, SeparationIsSymmetric) {
               separation(b, pose_of(b.state), a, pose_of(a.state)), 1e-12);
 }
 
+// Two 0.2 m dice of issue 21's hundred (die5, die6), tilted and turning, met edge on in the air
+// at 0.1127 s: their best separating axis is the cross product of two edges (2e-7 m deep here),
+// within the faces' preference (1e-3 of the reach), whose clipped region is empty. The face's
+// manifold had no point, every impact found on the pair was empty, and they went 6.9e-5 m
+// through each other. Now the pair touches at its two edges, as deep as the separation says.
+TEST(NarrowPhase, TwoTiltedDiceMeetingEdgeOnTouchAtTheirEdges) {
+  const RigidBody a = box(Vec3(0.2, 0.2, 0.2), Vec3::Zero()), b = a;
+  Pose pa, pb;
+  pa.x = Vec3(-0.59999999999999998, 0.43769947467479542, 0.29999999999999999);
+  pa.R << 0.8861339256001024, -0.43682700941580477, -0.15475409443823018, 0.39290631967918421,
+      0.88523644836089055, -0.2489599454722686, 0.24574639337477766, 0.15980799209751886,
+      0.95607014167635651;
+  pb.x = Vec3(-0.29999999999999999, 0.43769947467479542, 0.29999999999999999);
+  pb.R << 0.86792411112542545, 0.43186062926674484, 0.24536530768727544, -0.37856103379626982,
+      0.89495440186932385, -0.23611048741176321, -0.32155758585087008, 0.11204024037841076,
+      0.94023811001134616;
+  Vec3 axis;
+  const double sep = separation(a, pa, b, pb, &axis);
+  EXPECT_NEAR(sep, -2e-7, 1e-12);
+  const Manifold m = collide(a, pa, b, pb, 2e-7);
+  ASSERT_EQ(m.count, 1);
+  EXPECT_TRUE(m.edges);
+  EXPECT_NEAR((m.normal - axis).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(m.points[0].separation, sep, 1e-15);
+  // The two points are on the two dice's surfaces, sep apart along the normal.
+  EXPECT_NEAR((m.points[0].on_b - m.points[0].on_a).dot(m.normal), sep, 1e-12);
+}
+
+// The axis a separation is measured along has the two bodies' projections on it exactly that
+// far apart (negative: overlapping by that much), for boxes apart, touching and overlapping and
+// for a ball, in either order: the advancement of impacts bounds how fast a pair closes along it.
+TEST(NarrowPhase, TheSeparationsAxisHasTheProjectionsThatFarApart) {
+  auto projections_apart = [](const RigidBody& a, const RigidBody& b, const Vec3& axis) {
+    double hi_a = -INFINITY, lo_b = INFINITY;
+    if (a.is_sphere()) hi_a = axis.dot(a.state.x) + a.radius();
+    for (const Vec3& v : a.vertices()) hi_a = std::max(hi_a, axis.dot(a.state.x + a.state.R * v));
+    if (b.is_sphere()) lo_b = axis.dot(b.state.x) - b.radius();
+    for (const Vec3& v : b.vertices()) lo_b = std::min(lo_b, axis.dot(b.state.x + b.state.R * v));
+    return lo_b - hi_a;
+  };
+  const Quat qa(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+  const Quat qb(Eigen::AngleAxisd(-1.1, Vec3(3, 1, -2).normalized()));
+  for (double dx : {2.5, 1.2, 0.9, 0.6}) {
+    const RigidBody a = box(Vec3(1, 0.5, 2), Vec3(0.1, 0.2, 0.3), qa);
+    const RigidBody b = box(Vec3(0.4, 1.5, 0.8), Vec3(0.1 + dx, 0.8, 0.5), qb);
+    const RigidBody s = sphere(0.4, Vec3(0.1 + dx, -0.3, 0.9));
+    for (const auto& [p, q] : {std::pair(&a, &b), std::pair(&b, &a), std::pair(&a, &s),
+                               std::pair(&s, &a)}) {
+      Vec3 axis;
+      const double sep = separation(*p, pose_of(p->state), *q, pose_of(q->state), &axis);
+      EXPECT_NEAR(axis.norm(), 1.0, 1e-14);
+      EXPECT_NEAR(projections_apart(*p, *q, axis), sep, 1e-12) << "dx " << dx;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tumble
