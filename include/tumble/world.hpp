@@ -103,7 +103,7 @@ struct ContactTolerances {
   /// kinetic energy.
   double sleep_speed_mps = 1e-3;
   /// Events (impacts) handled inside one step of one body before the rest of the step treats
-  /// every contact as inelastic.
+  /// every contact as inelastic; an island has this many per 16 members.
   static constexpr int kMaxEventsPerStep = 64;
 
   /// The tolerances of a body of largest extent `length_m` under `gravity`, stepped with dt.

@@ -482,6 +482,9 @@ void World::advance_island(const Island& island, double h) {
 
   double remaining = h;
   int events = 0;
+  // The event budget of a step grows with the island: a pile of a hundred dice landing has
+  // that many first meetings in a step, each an impact of its own.
+  const int budget = Tol::kMaxEventsPerStep * ((members + 15) / 16);
   bool contact = false;
   bool solve_failed = false;
   bool settle = false, blind = false;
@@ -981,7 +984,7 @@ void World::advance_island(const Island& island, double h) {
       std::vector<double> approach(island.pairs.size(), 0.0);
       for (const IslandContact& c : now)
         approach[c.pair] = std::max(approach[c.pair], -normal_speed(view, c, state));
-      const bool capped = events >= Tol::kMaxEventsPerStep;
+      const bool capped = events >= budget;
       std::vector<double> impulses;
       const double rest = capped ? INFINITY : speed_scale;
       stats_.max_energy_gain_J = std::max(
@@ -1005,10 +1008,10 @@ void World::advance_island(const Island& island, double h) {
         PairContactStats& ps = pair_stats(pr.body_a, pr.body_b);
         if (ps.impacts++ == 0) ps.first_impact_t_s = t_event;
       }
-      if (events == Tol::kMaxEventsPerStep)
+      if (events == budget)
         if (!diagnostics_.recur("event_cap_hit"))
           diagnostics_.warn("event_cap_hit", t_event,
-                            "bodies met " + std::to_string(Tol::kMaxEventsPerStep) +
+                            "bodies met " + std::to_string(budget) +
                                 " impacts in one step; the rest of the step was made inelastic",
                             "use a smaller dt (now " + fmt("%.3g", def_.dt_s) + " s)");
       // Pathological (a light body hammered between a heavy one and the floor): the rest of
@@ -1016,8 +1019,8 @@ void World::advance_island(const Island& island, double h) {
       // and watches only the pairs that are apart, rather than loop on. Each of those meetings
       // leaves one more pair touching; should even they go on past a second budget, nothing is
       // watched for the rest of the step.
-      if (++events >= 2 * Tol::kMaxEventsPerStep) settle = true;
-      if (events >= 4 * Tol::kMaxEventsPerStep) blind = true;
+      if (++events >= 2 * budget) settle = true;
+      if (events >= 4 * budget) blind = true;
     }
     keep_step(static_cast<std::size_t>(first), end_info);
   }
