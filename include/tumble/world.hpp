@@ -98,6 +98,11 @@ struct ContactTolerances {
   /// at 1 m): a force at a point that moves away would do work. After an inelastic impulse, held
   /// points have zero normal speed to round-off, far below it.
   double hold_speed_mps = 1e-6;
+  /// In an island (bodies that touch), a touching point that leaves slower than this where a
+  /// stretch starts is stopped with the held ones: sqrt(2 g · 1e-3 touch), so under gravity it
+  /// would rise at most 1e-3 of the touch distance (1e-9 ℓ) and come back as an impact of its
+  /// own. 4.5e-5 m/s at 1 m; none without gravity.
+  double lift_speed_mps = 4.47e-5;
   /// A body supported by >= 3 resting points around its centre of mass, every point of it slower
   /// than this (1 mm/s at 1 m), is put at rest (P = L = 0): removes at most ½ m (1e-3 u)² of
   /// kinetic energy.

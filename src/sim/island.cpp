@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 
 #include "held_rows.hpp"
@@ -916,6 +917,23 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
     }
   }
   return island_kinetic_energy(v, s) - e_start;
+}
+
+void stop_island_points(const IslandView& v, const std::vector<IslandContact>& contacts,
+                        IslandState& s) {
+  const int n = static_cast<int>(contacts.size());
+  if (n == 0) return;
+  const Frames f = frames_of(v, contacts, s);
+  const std::vector<MassInfo> m = masses(v, s);
+  std::vector<Vec3> normals(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) normals[i] = f.frame[i].n;
+  const Eigen::MatrixXd A = contact_matrix(f, m, normals);
+  Eigen::VectorXd vn(n);
+  for (int i = 0; i < n; ++i) vn(i) = f.frame[i].n.dot(relative_velocity(v, s, f, i));
+  std::vector<int> all(static_cast<std::size_t>(n));
+  std::iota(all.begin(), all.end(), 0);
+  std::vector<double> impulses(static_cast<std::size_t>(n), 0.0);
+  stop_points(A, f, all, vn, s, impulses);
 }
 
 bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>& contacts,

@@ -153,6 +153,11 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
                               IslandState& s, double rest_speed, bool inelastic,
                               std::vector<double>& impulses);
 
+/// Zeroes the normal speed of every contact in `contacts` (least squares, minimum norm over
+/// dependent points): a projection in the kinetic metric, so it never gains energy.
+void stop_island_points(const IslandView& v, const std::vector<IslandContact>& contacts,
+                        IslandState& s);
+
 /// Static friction for the sticking contacts of a stretch: impulses bounded by mu times their
 /// normal impulse over it (`normal_impulse`), all sticking when they fit, else sliding (a
 /// contact slipping no faster than `still` then gets none: its slip's direction is round-off).

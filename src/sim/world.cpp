@@ -142,6 +142,7 @@ ContactTolerances ContactTolerances::for_body(double length_m, const Vec3& gravi
   t.touch_m = 1e-6 * length_m;
   t.rest_speed_mps = std::max(1e-2 * speed, 2.0 * gravity.norm() * dt_s);
   t.hold_speed_mps = 1e-6 * speed;
+  t.lift_speed_mps = std::sqrt(2e-3 * gravity.norm() * t.touch_m);
   t.sleep_speed_mps = 1e-3 * speed;
   return t;
 }

@@ -123,6 +123,48 @@ TEST(Friction, BoxSlidingOnAFixedBoxStopsAtVSquaredOverTwoMuG) {
   EXPECT_LT(w.bodies()[1].velocity().norm(), 1e-6);
 }
 
+// A box sliding without friction on a fixed table at 0.1 m/s, leaving it upwards at `up`.
+World leaving_box(double up) {
+  WorldDef def = ground();
+  const double s = 0.2;
+  BodyDef table = test::fixed_box_def(Vec3(4, 0.2, 1), Vec3(0, 0.1, 0));
+  table.friction = 0.0;
+  BodyDef box = test::box_def(Vec3::Constant(s), 1.0, Vec3(-1.0, 0.2 + 0.5 * s, 0));
+  box.velocity = Vec3(0.1, up, 0);
+  box.friction = 0.0;
+  def.bodies = {table, box};
+  return World(def);
+}
+
+TEST(Lift, AFaceLeavingSlowerThanTheLiftSpeedIsStoppedNotLaunched) {
+  // A 0.2 m box: lift speed sqrt(2e-3 g touch) = 6.3e-5 m/s, hold speed 1.4e-6 m/s. At 2e-5 m/s
+  // it would rise 2e-11 m (1e-10 of its size) and land 4 µs later, an impact of its own.
+  // It is stopped instead: no impact, on the table to 1e-9 of its size, its vertical
+  // momentum gone (the kinetic energy of ½ m up², 2e-10 J, removed; none gained beyond
+  // round-off).
+  World w = leaving_box(2e-5);
+  while (w.time() < 0.05) w.step();
+  EXPECT_EQ(w.contact_stats().impacts, 0);
+  EXPECT_NEAR(w.bodies()[1].state.x.y(), 0.3, 1e-9 * 0.2);
+  EXPECT_LT(std::abs(w.bodies()[1].velocity().y()), 1e-12);
+  EXPECT_NEAR(w.bodies()[1].velocity().x(), 0.1, 1e-12);
+  EXPECT_LT(w.contact_stats().max_energy_gain_J, 1e-15);
+}
+
+TEST(Lift, AFaceLeavingFasterThanTheLiftSpeedFliesAndLandsAt2UpOverG) {
+  // 1e-3 m/s (16 times the lift speed): it leaves, rises up²/2g = 5.1e-8 m, and its face lands
+  // flat 2 up / g = 2.04e-4 s later, one impact at the speed it left with (to 1e-6 of it; the
+  // landing is located to 1e-12 s).
+  const double up = 1e-3;
+  World w = leaving_box(up);
+  while (w.time() < 0.05) w.step();
+  ASSERT_EQ(w.contact_stats().impacts, 1);
+  const ImpactEvent& e = w.contact_stats().events.front();
+  EXPECT_NEAR(e.t_s, 2.0 * up / g, 1e-9);
+  EXPECT_NEAR(e.approach_speed_mps, up, 1e-6 * up);
+  EXPECT_NEAR(w.bodies()[1].state.x.y(), 0.3, 1e-9 * 0.2);
+}
+
 // A box resting on a fixed ramp tilted `degrees` about z, both with friction mu.
 World ramp(double degrees, double mu) {
   WorldDef def = test::world_def(Integrator::Rk4, 1e-3, false);
