@@ -1041,8 +1041,15 @@ void World::advance_island(const Island& island, double h) {
     remaining = impact ? remaining - tau : 0.0;
     // Integration drift of held contacts is removed by moving the bodies apart along the
     // normal (the lighter more); it counts as penetration, its potential energy as a gain.
+    // No deeper than the pair overlaps: an edge held on an edge is measured where the two
+    // lines are closest, and once the edges have turned or slid so that those points are off
+    // either edge, that can be far deeper than the bodies are (a die's edge 3.6e-5 m "into"
+    // another that it did not overlap, in a pile of 27: pushed apart by that, and the next
+    // stretch's corrections in turn, the pile gained 7e-4 J).
+    const IslandState posed = held.empty() ? IslandState{} : normalized(state, def_.rotation);
     for (const IslandContact& c : held) {
-      const double depth = -separation_of(c, state);
+      const double depth = std::min(-separation_of(c, state),
+                                    -pair_separation(static_cast<std::size_t>(c.pair), posed));
       if (!(depth > 0.0)) continue;
       const IslandPair& p = island.pairs[c.pair];
       const ContactFrame f = contact_frame(view, c, state);
