@@ -695,6 +695,29 @@ double island_kinetic_energy(const IslandView& v, const IslandState& s) {
 
 namespace {
 
+// The normal rows of `contacts` at s: their frames, the matrix from normal impulses to normal
+// speeds, and the normal speeds now.
+struct NormalRows {
+  Frames f;
+  Eigen::MatrixXd A;
+  Eigen::VectorXd vn;
+};
+
+NormalRows normal_rows(const IslandView& v, const std::vector<IslandContact>& contacts,
+                       const IslandState& s) {
+  const int n = static_cast<int>(contacts.size());
+  NormalRows rows;
+  rows.f = frames_of(v, contacts, s);
+  const std::vector<MassInfo> m = masses(v, s);
+  std::vector<Vec3> normals(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) normals[i] = rows.f.frame[i].n;
+  rows.A = contact_matrix(rows.f, m, normals);
+  rows.vn.resize(n);
+  for (int i = 0; i < n; ++i)
+    rows.vn(i) = rows.f.frame[i].n.dot(relative_velocity(v, s, rows.f, i));
+  return rows;
+}
+
 // The impulses along the normals, least squares with minimum norm over dependent points, that
 // bring the normal speed of each of `points` (not empty) to zero: a projection in the kinetic
 // metric, so it never gains energy.
@@ -923,17 +946,11 @@ void stop_island_points(const IslandView& v, const std::vector<IslandContact>& c
                         IslandState& s) {
   const int n = static_cast<int>(contacts.size());
   if (n == 0) return;
-  const Frames f = frames_of(v, contacts, s);
-  const std::vector<MassInfo> m = masses(v, s);
-  std::vector<Vec3> normals(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) normals[i] = f.frame[i].n;
-  const Eigen::MatrixXd A = contact_matrix(f, m, normals);
-  Eigen::VectorXd vn(n);
-  for (int i = 0; i < n; ++i) vn(i) = f.frame[i].n.dot(relative_velocity(v, s, f, i));
+  const NormalRows rows = normal_rows(v, contacts, s);
   std::vector<int> all(static_cast<std::size_t>(n));
   std::iota(all.begin(), all.end(), 0);
   std::vector<double> impulses(static_cast<std::size_t>(n), 0.0);
-  stop_points(A, f, all, vn, s, impulses);
+  stop_points(rows.A, rows.f, all, rows.vn, s, impulses);
 }
 
 bool apply_island_friction(const IslandView& v, const std::vector<IslandContact>& contacts,
@@ -1056,13 +1073,10 @@ void restore_normal_speeds(const IslandView& v, const std::vector<IslandContact>
                            const std::vector<double>& normal_impulse, IslandState& s) {
   const int n = static_cast<int>(held.size());
   if (n == 0) return;
-  const Frames f = frames_of(v, held, s);
-  const std::vector<MassInfo> m = masses(v, s);
-  std::vector<Vec3> normals(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) normals[i] = f.frame[i].n;
-  const Eigen::MatrixXd A = contact_matrix(f, m, normals);
-  Eigen::VectorXd vn(n);
-  for (int i = 0; i < n; ++i) vn(i) = f.frame[i].n.dot(relative_velocity(v, s, f, i));
+  const NormalRows rows = normal_rows(v, held, s);
+  const Frames& f = rows.f;
+  const Eigen::MatrixXd& A = rows.A;
+  const Eigen::VectorXd& vn = rows.vn;
   const Eigen::VectorXd d = least_norm_solve(A, -vn);
   bool feasible = (A * d + vn).norm() <= 1e-9 * std::max(vn.norm(), 1e-300);
   for (int i = 0; i < n && feasible; ++i)
