@@ -781,6 +781,7 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
   // once by pairs that were not approaching.
   const int max_passes = 4 * n + 16;
   std::vector<int> plastic_last;  // the points the last Zeno pass stopped
+  std::vector<char> stopped(v.island->pairs.size(), 0);  // pairs kept in the Zeno passes
   for (int pass = 0; pass < max_passes; ++pass) {
     std::vector<char> approaching_pair(v.island->pairs.size(), 0);
     for (int i = 0; i < n; ++i)
@@ -836,6 +837,15 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
       // The same holds across pairs: a domino wedged between the floor and the next one,
       // stopped at one, lifts off the other and falls back, in impacts that never end. So the
       // touching points of every pair that shares a body with an approaching one take part.
+      // From the 16th pass on, so do the pairs that a pass since then stopped (their points
+      // still slower than the rest speed). Pass after pass these projections, onto
+      // {v : the normal speeds of a set are zero}, alternate, and alternating projections
+      // converge only linearly to the projection onto their sets' intersection (von Neumann):
+      // the one projection onto their union. Each pass stopping only its own set, a struck
+      // pyramid of 6 rows ran 105 resolutions to the pass cap (4 n + 16, ~550 passes of
+      // 100–150 points each: 24 s of a 36 s run), and 220 of the twenty dominoes' resolutions
+      // took 17–311 passes. Not from the first pass: the dominoes then went out of their plane
+      // (3e-9 m at a sample, where the limit is 1e-9 m; after the 16th they stay within 5e-11).
       std::vector<char> body_hit(s.size(), 0);
       for (int i : set) {
         const IslandPair& p = v.island->pairs[contacts[i].pair];
@@ -848,8 +858,11 @@ double resolve_island_impacts(const IslandView& v, const std::vector<IslandConta
         const bool joined =
             body_hit[static_cast<std::size_t>(p.b.index)] ||
             (p.a.kind == Side::Member && body_hit[static_cast<std::size_t>(p.a.index)]);
-        if (joined && vn(i) <= rest_speed) plastic.push_back(i);
+        if ((joined || stopped[static_cast<std::size_t>(contacts[i].pair)]) && vn(i) <= rest_speed)
+          plastic.push_back(i);
       }
+      if (pass >= 16)
+        for (int i : plastic) stopped[static_cast<std::size_t>(contacts[i].pair)] = 1;
       stop_points(A, f, plastic, vn, s, impulses);
       vn = speeds();
       plastic_last = plastic;
