@@ -317,16 +317,19 @@ bool lemke(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& 
   Eigen::VectorXd rhs = b;
   std::vector<int> basis(static_cast<std::size_t>(n));
   std::iota(basis.begin(), basis.end(), 0);
+  // Row r divided by the pivot, then that row's multiple taken from every other row: one
+  // rank-one update, column by column (T is stored by columns; row by row it was strided).
+  Eigen::VectorXd x(n);
+  Eigen::RowVectorXd pivot_row(T.cols());
   auto exchange = [&](int r, int c) {
     const double p = T(r, c);
     T.row(r) /= p;
     rhs(r) /= p;
-    for (int i = 0; i < n; ++i) {
-      const double x = T(i, c);
-      if (i == r || x == 0.0) continue;
-      T.row(i) -= x * T.row(r);
-      rhs(i) -= x * rhs(r);
-    }
+    x = T.col(c);
+    x(r) = 0.0;
+    pivot_row = T.row(r);
+    T.noalias() -= x * pivot_row;
+    rhs -= rhs(r) * x;
     basis[static_cast<std::size_t>(r)] = c;
   };
   Eigen::Index first = 0;
