@@ -445,7 +445,7 @@ bool solve_large(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::Vect
 }  // namespace
 
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
-                        std::vector<char>& active, bool ridge_on_stall) {
+                        std::vector<char>& active, bool ridge_on_stall, bool last_resort) {
   if (b.size() > kLargeLcpRows && symmetric(A)) return solve_large(A, b, f, active);
   bool stalled = !pivot(A, b, f, active);
   if (!stalled && !grossly_off(A, b, f)) return canonical_split(A, b, f, active), true;
@@ -468,7 +468,7 @@ bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eige
   if (lemke(A, b, f, active)) return canonical_split(A, b, f, active), true;
   // No method reached a solution (a friction problem without one: Painlevé's paradox).
   f = Eigen::VectorXd::Zero(b.size());
-  projected_gauss_seidel(A, b, f);
+  if (last_resort) projected_gauss_seidel(A, b, f);
   active.assign(static_cast<std::size_t>(b.size()), 0);
   return false;
 }

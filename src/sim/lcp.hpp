@@ -35,8 +35,11 @@ LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b);
 /// where an island's held forces go sparse (held_rows.hpp: kSparseRows).
 inline constexpr int kLargeLcpRows = 256;
 
+/// Without `last_resort` a problem that no pivoting method solved is given up at once (f zero,
+/// false): for a caller that discards that answer and solves another problem instead.
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
-                        std::vector<char>& active, bool ridge_on_stall = false);
+                        std::vector<char>& active, bool ridge_on_stall = false,
+                        bool last_resort = true);
 
 /// The same problem where f are impulses along contact normals and A their Delassus matrix (an
 /// inelastic impact): the kinetic energy then changes by b·f + ½ fᵀA f, which a complementary f
