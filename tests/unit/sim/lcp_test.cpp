@@ -84,6 +84,26 @@ TEST(LcpPivoting, SolvesAnUnsymmetricProblemPrincipalPivotingCannot) {
   EXPECT_LT((again - expected).cwiseAbs().maxCoeff(), 1e-12);
 }
 
+TEST(LcpPivoting, AProblemWithoutSolutionGetsGaussSeidelOnlyAsALastResort) {
+  // w1 = f1 − f2 − 1 and w2 = f2 − f1 − 1 cannot both be >= 0 (their sum is −2): no pivoting
+  // finds a solution. By default the answer is projected Gauss–Seidel's, and false; a caller
+  // that will solve another problem instead (an island's held forces, again without their
+  // sliding friction) asks for no last resort and gets no force, and false, at once.
+  Eigen::MatrixXd A(2, 2);
+  A << 1.0, -1.0,  //
+      -1.0, 1.0;
+  const Eigen::VectorXd b = Eigen::VectorXd::Constant(2, -1.0);
+  Eigen::VectorXd f;
+  std::vector<char> active;
+  EXPECT_FALSE(solve_lcp_pivoting(A, b, f, active));
+  EXPECT_GT(f.cwiseAbs().maxCoeff(), 0.0);  // Gauss–Seidel's sweeps moved it
+  EXPECT_EQ(active, (std::vector<char>{0, 0}));
+  Eigen::VectorXd none;
+  EXPECT_FALSE(solve_lcp_pivoting(A, b, none, active, false, /*last_resort=*/false));
+  EXPECT_EQ(none, Eigen::VectorXd::Zero(2));
+  EXPECT_EQ(active, (std::vector<char>{0, 0}));
+}
+
 TEST(LcpPivoting, RowsThatASymmetricPoseMakesEqualChangeTogether) {
   // Rows 0 and 1 are the two ends of an edge in a symmetric pose (equal rows, swapped), with
   // sliding friction's coupling making A not a P-matrix: the LCP then has a lopsided answer,
