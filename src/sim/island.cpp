@@ -408,7 +408,9 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     if (active.size() != static_cast<std::size_t>(b.size()))
       active.assign(static_cast<std::size_t>(b.size()), 1);
     if (sticking.empty()) {
-      if (!solve_lcp_pivoting(A, b, out.normal, active, false, !retried)) ok = false;
+      if (!solve_lcp_pivoting(A, b, out.normal, active, /*ridge_on_stall=*/false,
+                              /*last_resort=*/!retried))
+        ok = false;
     } else {
       // Static friction inside the stretch (Baraff 1994, section 7): a sticking contact that
       // presses keeps its slip, two tangential rows whose relative acceleration is zero, with
@@ -467,7 +469,9 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
           S -= Ane * X;
           c -= Ane * y;
         }
-        if (!solve_lcp_pivoting(S, c, out.normal, active, false, !retried)) ok = false;
+        if (!solve_lcp_pivoting(S, c, out.normal, active, /*ridge_on_stall=*/false,
+                                /*last_resort=*/!retried))
+          ok = false;
         fE.setZero();
         if (q > 0) {
           const Eigen::VectorXd fq = -(X * out.normal + y);
