@@ -349,9 +349,10 @@ Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const
   if (fb.separation > margin) return none;
   const EdgeQuery ee = query_edges(a, pa, wa, b, pb, wb);
   if (ee.separation > margin) return none;
-  // Faces are preferred to edges, and a's face to b's, unless clearly worse (by 1e-3 of the
-  // smaller body's reach): a box resting face on face has edge axes as good as its face axis,
-  // and a face gives the whole support polygon where an edge gives one point.
+  // Faces are preferred to edges, and a's face to b's (where they are one plane), unless
+  // clearly worse (by 1e-3 of the smaller body's reach): a box resting face on face has edge
+  // axes as good as its face axis, and a face gives the whole support polygon where an edge
+  // gives one point.
   const double tol = 1e-3 * std::min(a.bounding_radius(), b.bounding_radius());
   const double face_best = std::max(fa.separation, fb.separation);
   const double edge_tol = 1e-9 * std::min(a.bounding_radius(), b.bounding_radius());
@@ -372,7 +373,13 @@ Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const
     return m;
   };
   if (ee.edge_a >= 0 && ee.separation > face_best + edge_tol) return edge_contact();
-  const Manifold face = fb.separation > fa.separation + tol
+  // The preference between a's face and b's only where they are the same plane, turned against
+  // each other: faces of different directions (two boxes meeting edge to parallel edge) are
+  // taken as the separating axes rank them.
+  const Vec3 na = pa.R * a.faces()[static_cast<std::size_t>(fa.face)].normal;
+  const Vec3 nb = pb.R * b.faces()[static_cast<std::size_t>(fb.face)].normal;
+  const double face_tol = -na.dot(nb) > 1.0 - 1e-6 ? tol : edge_tol;
+  const Manifold face = fb.separation > fa.separation + face_tol
                             ? swapped(face_contact(b, pb, wb, fb.face, a, pa, wa, margin))
                             : face_contact(a, pa, wa, fa.face, b, pb, wb, margin);
   // A face within the preference of the edges whose clipped region is empty: two edges
