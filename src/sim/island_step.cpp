@@ -18,6 +18,7 @@
 #include "collide.hpp"
 #include "held_rows.hpp"
 #include "island.hpp"
+#include "lcp.hpp"
 #include "number_text.hpp"
 #include "time_of_impact.hpp"
 #include "tumble/world.hpp"
@@ -193,6 +194,59 @@ void aim_freed(const IslandView& v, const IslandDynamics& dynamics,
     const Vec3 way = contact_slip(v, held[i], s) + tau * rate[i];
     if (way.norm() > 0.0) held[i].slip_direction = way.normalized();
   }
+}
+
+// A held pair still overlapping after the drift correction's pass: its normal (from a to b)
+// and how deep its deepest held contact is (negative: apart by that much).
+struct HeldPush {
+  int pair = 0;
+  Vec3 n = Vec3::Zero();
+  double depth = 0.0;
+};
+
+// The least move of the members, in the mass metric (the sum of m |dx|^2), that parts every
+// held pair by its depth: translations along the normals, dx_k = (1/m_k) sum_i s_ik l_i n_i
+// with l >= 0 complementary to n_i . (dx_b - dx_a) >= depth_i, an LCP over the pairs whose
+// matrix is that of impulses on point masses (symmetric, semidefinite). Member order.
+std::vector<std::pair<int, Vec3>> project_held_apart(const IslandView& v,
+                                                     const std::vector<HeldPush>& rows) {
+  const Eigen::Index n = static_cast<Eigen::Index>(rows.size());
+  // The members a row pushes, with the sign of its push on each (b +1, a -1).
+  auto sides = [&](std::size_t i) {
+    const IslandPair& p = v.island->pairs[static_cast<std::size_t>(rows[i].pair)];
+    std::array<std::pair<int, double>, 2> out{{{-1, 0.0}, {-1, 0.0}}};
+    if (p.a.kind == Side::Member) out[0] = {p.a.index, -1.0};
+    out[1] = {p.b.index, 1.0};
+    return out;
+  };
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd b(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto si = sides(static_cast<std::size_t>(i));
+    b(i) = -rows[static_cast<std::size_t>(i)].depth;
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (const auto& [mi, sgi] : sides(static_cast<std::size_t>(j)))
+        for (const auto& [mk, sgk] : si)
+          if (mi >= 0 && mi == mk)
+            A(i, j) += sgi * sgk * v.member(mi).inverse_mass() *
+                       rows[static_cast<std::size_t>(i)].n.dot(rows[static_cast<std::size_t>(j)].n);
+  }
+  Eigen::VectorXd l;
+  std::vector<char> active;
+  solve_lcp_pivoting(A, b, l, active, /*ridge_on_stall=*/true, /*last_resort=*/true);
+  std::vector<Vec3> dx(v.island->members.size(), Vec3::Zero());
+  std::vector<char> moved(dx.size(), 0);
+  for (Eigen::Index i = 0; i < l.size(); ++i)
+    for (const auto& [m, sg] : sides(static_cast<std::size_t>(i)))
+      if (m >= 0 && l(i) > 0.0) {
+        dx[static_cast<std::size_t>(m)] +=
+            sg * l(i) * v.member(m).inverse_mass() * rows[static_cast<std::size_t>(i)].n;
+        moved[static_cast<std::size_t>(m)] = 1;
+      }
+  std::vector<std::pair<int, Vec3>> out;
+  for (std::size_t m = 0; m < dx.size(); ++m)
+    if (moved[m]) out.emplace_back(static_cast<int>(m), dx[m]);
+  return out;
 }
 
 // Mid-step states carry unnormalised quaternions: collision geometry wants a rotation.
@@ -1046,24 +1100,32 @@ void World::advance_island(const Island& island, double h) {
     // either edge, that can be far deeper than the bodies are (a die's edge 3.6e-5 m "into"
     // another that it did not overlap, in a pile of 27: pushed apart by that, and the next
     // stretch's corrections in turn, the pile gained 7e-4 J).
-    const IslandState posed = held.empty() ? IslandState{} : normalized(state, def_.rotation);
+    //
+    // A correction moves a body that other held contacts hold too: a 50 kg ball on a box on a
+    // box on the floor, corrected once in pair order (the boxes', the ball's, the floor's), left
+    // the boxes 2.5e-6 m into each other, the next stretch's correction the same, each stretch
+    // 4 µs, and a struck pyramid's pile gained 3e-5 J so. Where a held contact is still deeper
+    // than 1e-3 of the touch distance (1e-9 ℓ: far above a held point's drift in a stretch,
+    // ~1e-15 ℓ) after that pass, the rest is removed by one projection of all of them together
+    // (project_held_apart); sweeping the pass again converged as 0.99 a sweep under a 50:1
+    // mass ratio. The penetration counted is what the stretch left, before any move; the gain,
+    // that of every move.
+    IslandState posed = held.empty() ? IslandState{} : normalized(state, def_.rotation);
+    double correction_gain = 0.0;
+    auto move = [&](const Side& side, const Vec3& by) {
+      if (side.kind != Side::Member) return;
+      state[side.index].x += by;
+      posed[side.index].x += by;
+      correction_gain -= view.member(side.index).mass() * def_.gravity.dot(by);
+    };
+    auto held_depth = [&](const IslandContact& c) {
+      return std::min(-separation_of(c, state),
+                      -pair_separation(static_cast<std::size_t>(c.pair), posed));
+    };
     for (const IslandContact& c : held) {
-      const double depth = std::min(-separation_of(c, state),
-                                    -pair_separation(static_cast<std::size_t>(c.pair), posed));
+      const double depth = held_depth(c);
       if (!(depth > 0.0)) continue;
       const IslandPair& p = island.pairs[c.pair];
-      const ContactFrame f = contact_frame(view, c, state);
-      const double wa = p.a.kind == Side::Member ? view.member(p.a.index).inverse_mass() : 0.0;
-      const double wb = view.member(p.b.index).inverse_mass();
-      const Vec3 move_b = depth * wb / (wa + wb) * f.n;
-      state[p.b.index].x += move_b;
-      double gain = -view.member(p.b.index).mass() * def_.gravity.dot(move_b);
-      if (p.a.kind == Side::Member) {
-        const Vec3 move_a = -depth * wa / (wa + wb) * f.n;
-        state[p.a.index].x += move_a;
-        gain -= view.member(p.a.index).mass() * def_.gravity.dot(move_a);
-      }
-      stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, gain);
       stats_.deepest_penetration_m = std::max(stats_.deepest_penetration_m, depth);
       PairContactStats& ps = pair_stats(p.body_a, p.body_b);
       ps.deepest_penetration_m = std::max(ps.deepest_penetration_m, depth);
@@ -1074,6 +1136,36 @@ void World::advance_island(const Island& island, double h) {
                                 " m into each other in one step",
                             smaller_step_fix());
     }
+    for (const IslandContact& c : held) {
+      const double depth = held_depth(c);
+      if (!(depth > 0.0)) continue;
+      const IslandPair& p = island.pairs[c.pair];
+      const ContactFrame f = contact_frame(view, c, state);
+      const double wa = p.a.kind == Side::Member ? view.member(p.a.index).inverse_mass() : 0.0;
+      const double wb = view.member(p.b.index).inverse_mass();
+      move(p.b, depth * wb / (wa + wb) * f.n);
+      move(p.a, -depth * wa / (wa + wb) * f.n);
+    }
+    bool residual = false;
+    for (const IslandContact& c : held)
+      residual |= held_depth(c) > 1e-3 * pair_tol[c.pair].touch_m;
+    if (residual) {
+      // One row per pair held: its deepest contact's depth along that contact's normal.
+      std::vector<int> row_of(island.pairs.size(), -1);
+      std::vector<HeldPush> rows;
+      for (const IslandContact& c : held) {
+        const double depth = held_depth(c);
+        int& r = row_of[static_cast<std::size_t>(c.pair)];
+        if (r < 0) {
+          r = static_cast<int>(rows.size());
+          rows.push_back({c.pair, contact_frame(view, c, state).n, depth});
+        } else if (depth > rows[static_cast<std::size_t>(r)].depth) {
+          rows[static_cast<std::size_t>(r)] = {c.pair, contact_frame(view, c, state).n, depth};
+        }
+      }
+      for (const auto& [member, by] : project_held_apart(view, rows)) move(Side{Side::Member, member}, by);
+    }
+    stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, correction_gain);
     if (impact) {
       contact = true;
       const std::vector<IslandContact> now = find_contacts(state);
