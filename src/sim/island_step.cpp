@@ -1163,7 +1163,8 @@ void World::advance_island(const Island& island, double h) {
           rows[static_cast<std::size_t>(r)] = {c.pair, contact_frame(view, c, state).n, depth};
         }
       }
-      for (const auto& [member, by] : project_held_apart(view, rows)) move(Side{Side::Member, member}, by);
+      for (const auto& [member, by] : project_held_apart(view, rows))
+        move(Side{Side::Member, member}, by);
     }
     stats_.max_energy_gain_J = std::max(stats_.max_energy_gain_J, correction_gain);
     if (impact) {
