@@ -872,7 +872,7 @@ void World::advance_island(const Island& island, double h) {
         }
         return soonest;
       };
-      std::vector<double> free_a(watched.size()), free_b(watched.size());
+      std::vector<double> free_a(watched.size());
       IslandState n_a = normalized(start, def_.rotation);
       for (std::size_t w = 0; w < watched.size(); ++w) free_a[w] = free_gap(w, n_a);
       // The stretch's motion between its two ends, for the advancement below: each member's
@@ -945,51 +945,82 @@ void World::advance_island(const Island& island, double h) {
         return ns;
       };
       // Conservative advancement: no watched pair can close its gap (plus the touch distance)
-      // before t_a + (gap + touch) / bound; evaluate there, until one is found across. On the
-      // curve where it is used; where the integrator's state at the last time found clear is
-      // not clear after all, the crossing is bracketed from the last time the integrator's
-      // state was found clear (where the curve starts).
-      double t_a = 0.0, t_b = 0.0;
-      std::vector<double> g_a = gap_start, g_b(watched.size());
-      std::vector<Vec3> axis_a = axis_start, axis_b(watched.size());
+      // before t + (gap + touch) / bound from a time t it was measured at; each pair is
+      // measured again there, the evaluation at the soonest such time of any pair, until one is
+      // found across. Measuring every pair at every evaluation instead cost a landing pile of 27
+      // dice 33 000 separations a stretch, 2 in 3 of them of pairs not due for 10^4 more
+      // evaluations. On the curve where it is used; the integrator's state decides a crossing
+      // (below), and the stretch's end is measured whole.
+      std::vector<double> g_now = gap_start, free_now = free_a;
+      std::vector<Vec3> axis_now = axis_start;
+      std::vector<double> seen(watched.size(), 0.0), due(watched.size(), 0.0);
+      // A pair that touches at the stretch's start has no gap to advance through, and a bound
+      // over its touch distance (1e-6 of its size) would cut a turning box's step into 10^4
+      // pieces. Its contacts approach (resolved above) or are held by forces; what is left is a
+      // new point of it going in (a corner rocking down, or swinging round on a spinning body).
+      // One that goes in and stays is found at the next evaluation and bracketed; one that
+      // could dip in and out between two evaluations is kept shallower than 1e-4 of the pair's
+      // size (invisible) by stepping at most that far at its bound.
+      auto due_after = [&](std::size_t w, double t, const IslandState& ns) {
+        const Tol& tol = pair_tol[watched[w]];
+        const double reach =
+            pair_touching[watched[w]] ? std::max(tol.touch_m, 1e-4 * tol.length_m) : tol.touch_m;
+        return t + (vertex_rate[watched[w]].empty()
+                        ? std::max((std::max({g_now[w], free_now[w], 0.0}) + reach) / bound[w],
+                                   (std::max(g_now[w], 0.0) + reach) /
+                                       closing_along(w, axis_now[w]))
+                        : floor_time(w, ns, reach));
+      };
+      for (std::size_t w = 0; w < watched.size(); ++w) due[w] = due_after(w, 0.0, n_a);
+      // The pairs due at t (every one with `all`) measured at `at`, and the pairs touching at
+      // the stretch's start at every evaluation (a corner rocking down is found at the first
+      // one where it is in, as before: measured only when due, the dominoes' pairs went in
+      // further before they were found, and their held contacts sank to the touch distance);
+      // those found clear are due again later.
       std::vector<std::size_t> crossed;
+      auto measure_due = [&](const IslandState& at, double t, bool all) {
+        const IslandState ns = normalized(at, def_.rotation);
+        crossed.clear();
+        for (std::size_t w = 0; w < watched.size(); ++w) {
+          if (!all && due[w] > t && !pair_touching[watched[w]]) continue;
+          g_now[w] = pair_gap(w, ns, &axis_now[w]);
+          free_now[w] = free_gap(w, ns);
+          const double noise =
+              32.0 * std::numeric_limits<double>::epsilon() *
+              (noise_scale + at[island.pairs[watched[w]].b.index].x.cwiseAbs().maxCoeff());
+          if (g_now[w] < -noise) {
+            crossed.push_back(w);
+          } else {
+            seen[w] = t;
+            due[w] = due_after(w, t, ns);
+          }
+        }
+      };
+      // The last time every pair was measured clear on the integrator's own state (the
+      // bracket's start where one is found across), with that state and the gaps there.
+      double t_all = 0.0;
+      IslandState at_all = start;
+      std::vector<double> g_all = gap_start;
+      double t_a = 0.0, t_b = 0.0;
+      std::vector<double> g_a, g_b;
       IslandState s_b, at_lo;
       {
-        bool interpolate = curve, a_on_curve = false;
+        bool interpolate = curve;
         for (int iter = 0; iter < 10000; ++iter) {
-          double safe = INFINITY;
-          // A pair that touches at the stretch's start has no gap to advance through, and a
-          // bound over its touch distance (1e-6 of its size) would cut a turning box's step into
-          // 10^4 pieces. Its contacts approach (resolved above) or are held by forces; what is
-          // left is a new point of it going in (a corner rocking down, or swinging round on a
-          // spinning body). One that goes in and stays is found at the next evaluation and
-          // bracketed; one that could dip in and out between two evaluations is kept shallower
-          // than 1e-4 of the pair's size (invisible) by stepping at most that far at its bound.
-          for (std::size_t w = 0; w < watched.size(); ++w) {
-            const Tol& tol = pair_tol[watched[w]];
-            const double reach = pair_touching[watched[w]]
-                                     ? std::max(tol.touch_m, 1e-4 * tol.length_m)
-                                     : tol.touch_m;
-            const double sw =
-                vertex_rate[watched[w]].empty()
-                    ? std::max((std::max({g_a[w], free_a[w], 0.0}) + reach) / bound[w],
-                               (std::max(g_a[w], 0.0) + reach) / closing_along(w, axis_a[w]))
-                    : floor_time(w, n_a, reach);
-            safe = std::min(safe, sw);
-          }
-          t_b = std::min(remaining, t_a + std::max(safe, 1e3 * min_span));
+          double soonest = INFINITY;
+          for (double d : due) soonest = std::min(soonest, d);
+          t_b = std::min(remaining, std::max(soonest, t_a + 1e3 * min_span));
           const bool between = t_b < remaining;
           s_b = !between ? end : interpolate ? interpolated(t_b) : advanced(t_b, nullptr);
-          IslandState nb = measure(s_b, g_b, axis_b, free_b, crossed);
-          // Found across on the curve: the integrator's own state decides. Where that is clear
-          // (a held contact the curve dipped through by its error), the curve starts again from
-          // it: shorter, it errs less. Going on on the integrator alone instead cost 27 dice
-          // landing in a pile 300 trials, each integrating the island, after every such dip.
-          bool confirmed = false;
+          measure_due(s_b, t_b, !between);
+          // Found across on the curve: the integrator's own state decides, every pair measured
+          // on it. Where that is clear (a held contact the curve dipped through by its error),
+          // the curve starts again from it: shorter, it errs less. Going on on the integrator
+          // alone instead cost 27 dice landing in a pile 300 trials, each integrating the
+          // island, after every such dip.
           if (!crossed.empty() && between && interpolate) {
             s_b = advanced(t_b, nullptr);
-            nb = measure(s_b, g_b, axis_b, free_b, crossed);
-            confirmed = true;
+            measure_due(s_b, t_b, true);
             if (!crossed.empty()) {
               interpolate = false;
             } else {
@@ -997,32 +1028,35 @@ void World::advance_island(const Island& island, double h) {
               curve_from = s_b;
               for (int k = 0; k < members; ++k)
                 curve_omega[static_cast<std::size_t>(k)] = omega(s_b, Side{Side::Member, k});
+              t_all = t_b, at_all = s_b, g_all = g_now;
             }
           }
           if (!crossed.empty() || !between) break;
           t_a = t_b;
-          g_a = g_b;
-          axis_a = axis_b;
-          free_a = free_b;
-          n_a = nb;
-          a_on_curve = interpolate && !confirmed;
         }
-        if (!crossed.empty())
-          at_lo = t_a == 0.0 ? start : t_a == curve_t0 ? curve_from : advanced(t_a, nullptr);
-        std::vector<std::size_t> across;
-        if (!crossed.empty() && a_on_curve) measure(at_lo, g_a, axis_a, free_a, across);
-        // The curve passed a crossing that the integrator's states have before t_a (by the
-        // curve's error: it was found clear there by a hair). Advancing the whole stretch again
-        // on the integrator alone cost 27 dice landing in a pile 440 trials, each integrating the
-        // island, every time.
-        if (!across.empty()) {
-          t_b = t_a;
-          s_b = at_lo;
-          g_b = g_a;
-          crossed = across;
-          t_a = curve_t0;
-          at_lo = curve_from;
-          measure(at_lo, g_a, axis_a, free_a, across);
+        // The bracket's start: the latest time each pair found across was seen clear, where
+        // every pair is measured on the integrator's state. A pair across there (one that went
+        // in before another was found, or that the curve passed by its error) makes that time
+        // the bracket's end instead, and the search goes back to where that pair was seen clear,
+        // at the latest to where every pair was.
+        g_b = g_now;
+        while (!crossed.empty()) {
+          double lo = INFINITY;
+          for (std::size_t w : crossed) lo = std::min(lo, seen[w]);
+          if (!(lo > t_all && lo < t_b)) {
+            t_a = t_all, at_lo = at_all, g_a = g_all;
+            break;
+          }
+          const IslandState s_lo = advanced(lo, nullptr);
+          const std::vector<std::size_t> ahead = crossed;
+          measure_due(s_lo, lo, true);
+          if (crossed.empty()) {
+            t_a = lo, at_lo = s_lo, g_a = g_now;
+            t_all = lo, at_all = s_lo, g_all = g_now;
+            crossed = ahead;
+            break;
+          }
+          t_b = lo, s_b = s_lo, g_b = g_now;
         }
       }
       if (!crossed.empty()) {
@@ -1047,8 +1081,30 @@ void World::advance_island(const Island& island, double h) {
         const double noise = 32.0 * std::numeric_limits<double>::epsilon() * noise_scale;
         const IslandState at_a = at_lo;
         const StepInfo info_a = lo_info;
-        bool located =
-            locate_impact(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info, advanced, gap_at, true);
+        // The crossing on the curve first (it costs the gaps only), as a guess for the
+        // integrator's: where the curve is not across at hi (or is at lo), none.
+        auto locate = [&] {
+          if (!curve) return locate_impact(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info,
+                                           advanced, gap_at, true);
+          auto curve_gap = [&](double t) { return gap_at(interpolated(t)); };
+          const double gc_lo = curve_gap(lo), gc_hi = curve_gap(hi);
+          double clo = lo, guess = lo, slope = -1.0;
+          if (gc_lo >= -noise && gc_hi < -noise) {
+            IslandState on_curve;
+            StepInfo unused;
+            auto curve_at = [&](double t, StepInfo*) { return interpolated(t); };
+            locate_impact(clo, hi, std::max(gc_lo, 0.0), gc_hi, toi, noise, on_curve, unused,
+                          curve_at, gap_at, true);
+            // The gap's rate there, over 1e-3 of the bracket about it.
+            const double d = 1e-3 * (hi - lo);
+            const double a = std::max(lo, clo - d), b = std::min(hi, clo + d);
+            guess = clo;
+            slope = (curve_gap(b) - curve_gap(a)) / (b - a);
+          }
+          return locate_impact_from_guess(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info,
+                                          advanced, gap_at, guess, slope, true);
+        };
+        bool located = locate();
         // Each trial is a step of its own from the stretch's start, so the states are not one
         // smooth path in the trial's length: where the contact forces' modes differ between
         // trials (a solve that fell back), another pair, clear at both ends of the bracket, can be
@@ -1075,8 +1131,7 @@ void World::advance_island(const Island& island, double h) {
           g_lo = INFINITY;
           for (std::size_t w : crossed) g_lo = std::min(g_lo, g_a[w]);
           g_lo = std::max(g_lo, 0.0);
-          located =
-              locate_impact(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info, advanced, gap_at, true);
+          located = locate();
         }
         if (!located)
           if (!diagnostics_.recur("contact_tolerance_missed"))

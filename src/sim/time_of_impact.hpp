@@ -46,4 +46,34 @@ bool locate_impact(double& lo, double hi, double g_lo, double g_hi, double width
   return iter < 200;
 }
 
+/// The same search, first tried where a cheaper model of the path puts the crossing (the island
+/// step's Hermite curve through the stretch's ends): `guess` inside (lo, hi), and `slope` the
+/// gap's rate there (negative). At most two trials there, each a Newton step of the gap on the
+/// integrator's own states aimed half the noise above zero (inside the touching window); what
+/// they leave is a narrower bracket for locate_impact. The curve is off the integrator's states
+/// by O(t^5) (1e-13 of a die's size over a 2 ms stretch), so the first trial is that close and
+/// the second within the noise: 27 dice landing in a pile took 8.9 trials a crossing from the
+/// advancement's bracket.
+template <class State, class Info, class Advance, class Gap>
+bool locate_impact_from_guess(double& lo, double hi, double g_lo, double g_hi, double width,
+                              double noise, State& at_lo, Info& lo_info, const Advance& advance,
+                              const Gap& gap, double guess, double slope, bool at_touch = false) {
+  const bool open = at_touch && g_lo > noise;
+  double t = guess;
+  for (int trial = 0; trial < 2 && hi - lo > width && t > lo && t < hi; ++trial) {
+    Info info;
+    const State s = advance(t, &info);
+    const double g = gap(s);
+    if (g >= -noise) {
+      lo = t, g_lo = g, at_lo = s, lo_info = info;
+      if (open && g <= noise) return true;
+    } else {
+      hi = t, g_hi = g;
+    }
+    t -= (g - 0.5 * noise) / slope;
+  }
+  if (hi - lo <= width) return true;
+  return locate_impact(lo, hi, g_lo, g_hi, width, noise, at_lo, lo_info, advance, gap, at_touch);
+}
+
 }  // namespace tumble

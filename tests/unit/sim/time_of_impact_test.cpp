@@ -75,5 +75,48 @@ TEST(TimeOfImpact, AFastApproachIsLocatedAsBefore) {
   EXPECT_GE(gap(b.lo), -kNoise);
 }
 
+// The island step's path: the integrator's gap is the curve's off by its error (here 3e-14 m,
+// a die's 1e-13 of its size over a stretch) and the curve's crossing is the guess. A slow corner
+// (1e-3 m/s) and a fast one (2 m/s) are located as the plain search locates them, in two or
+// three trials, fewer than it takes even on a gap this nearly straight (seven and four; 8.9 on
+// average in a pile of dice); a guess off the bracket, or a wrong slope, falls back on it.
+TEST(TimeOfImpact, AGuessFromTheCurveLocatesTheCrossingInTwoOrThreeTrials) {
+  for (const double v : {1e-3, 2.0}) {
+    const double t_star = 1.37e-3, error = 3e-14, width = 1.4e-13;
+    auto curve = [&](double t) { return v * (t_star - t) + 0.1 * (t_star - t) * (t_star - t); };
+    auto gap = [&](double t) { return curve(t) + error; };
+    const Search plain = run(2e-3, width, kNoise, true, gap);
+    Search guided;
+    auto advance = [&](double t, Info*) {
+      ++guided.trials;
+      return t;
+    };
+    const double guess = t_star, slope = (curve(t_star + 1e-6) - curve(t_star - 1e-6)) / 2e-6;
+    guided.located =
+        locate_impact_from_guess(guided.lo, 2e-3, gap(0.0), gap(2e-3), width, kNoise,
+                                 guided.at_lo, guided.info, advance, gap, guess, slope, true);
+    ASSERT_TRUE(plain.located);
+    ASSERT_TRUE(guided.located);
+    EXPECT_GE(gap(guided.lo), -kNoise) << v;
+    EXPECT_NEAR(guided.lo, plain.lo, width + kNoise / v) << v;
+    EXPECT_LE(guided.trials, 3) << v;
+    EXPECT_LT(guided.trials, plain.trials) << v;
+    for (const auto& [bad_guess, bad_slope] : {std::pair(3e-3, slope), std::pair(guess, -slope)}) {
+      Search fallback;
+      auto count = [&](double t, Info*) {
+        ++fallback.trials;
+        return t;
+      };
+      fallback.located =
+          locate_impact_from_guess(fallback.lo, 2e-3, gap(0.0), gap(2e-3), width, kNoise,
+                                   fallback.at_lo, fallback.info, count, gap, bad_guess,
+                                   bad_slope, true);
+      ASSERT_TRUE(fallback.located) << v;
+      EXPECT_GE(gap(fallback.lo), -kNoise) << v;
+      EXPECT_NEAR(fallback.lo, t_star + error / v, width + kNoise / v) << v;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tumble
