@@ -96,10 +96,10 @@ bool solve_held_rows_sparse(const HeldRows& rows, std::vector<char>& active,
                             double* iterative_residual = nullptr);
 
 /// The least-norm solution (least squares where M x = rhs has none) of a symmetric positive
-/// semidefinite M: a complete orthogonal decomposition up to kSparseRows rows; beyond, where its
-/// cubic cost would dominate a large island's step, a sparse factorisation of M with a diagonal
-/// of 1e-10 of its largest added (Tikhonov: the least-norm solution to about 1e-10 relative on
-/// consistent systems; a residual of 1e-10 |M| |x|), the decomposition again if that fails.
+/// semidefinite M: the pivoted LDLᵀ (lcp.hpp: least_norm) up to kSparseRows rows; beyond, where
+/// its cubic cost would dominate a large island's step, a sparse factorisation of M with a
+/// diagonal of 1e-10 of its largest added (Tikhonov: the least-norm solution to about 1e-10
+/// relative on consistent systems; a residual of 1e-10 |M| |x|), the dense one if that fails.
 Eigen::VectorXd least_norm_solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs);
 
 /// Above this many rows an island's contact problems are solved sparse first (held rows,

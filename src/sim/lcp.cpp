@@ -1,6 +1,7 @@
 #include "lcp.hpp"
 #include "mprgp.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/QR>
 #include <algorithm>
 #include <bit>
@@ -74,6 +75,10 @@ LcpVector solve_lcp(const LcpMatrix& A, const LcpVector& b) {
 
 namespace {
 
+bool symmetric(const Eigen::MatrixXd& A) {
+  return (A - A.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * A.cwiseAbs().maxCoeff();
+}
+
 // Minimum-norm solution of A[C, C] x = rhs[C] for the rows in `set`.
 Eigen::VectorXd solve_subset(const Eigen::MatrixXd& A, const std::vector<int>& set,
                              const Eigen::VectorXd& rhs) {
@@ -84,7 +89,7 @@ Eigen::VectorXd solve_subset(const Eigen::MatrixXd& A, const std::vector<int>& s
     bs(r) = rhs(set[r]);
     for (int c = 0; c < k; ++c) As(r, c) = A(set[r], set[c]);
   }
-  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(As).solve(bs);
+  return least_norm(As, bs, static_cast<double>(k) * Eigen::NumTraits<double>::epsilon());
 }
 
 void projected_gauss_seidel(const Eigen::MatrixXd& A, const Eigen::VectorXd& b,
@@ -276,10 +281,7 @@ void canonical_split(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::
     bs(r) = -b(S[r]);
     for (int c = 0; c < k; ++c) As(r, c) = A(S[r], S[c]);
   }
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-  cod.setThreshold(1e-10);  // before compute(): Eigen reads it there
-  cod.compute(As);
-  const Eigen::VectorXd g = cod.solve(bs);
+  const Eigen::VectorXd g = least_norm(As, bs, 1e-10);
   Eigen::VectorXd split = Eigen::VectorXd::Zero(n);
   for (int r = 0; r < k; ++r) {
     if (g(r) < -scale_f) return;
@@ -417,10 +419,6 @@ namespace {
 // is q, never above zero).
 constexpr int kLargeLcpIterations = 4000;
 
-bool symmetric(const Eigen::MatrixXd& A) {
-  return (A - A.transpose()).cwiseAbs().maxCoeff() <= 1e-12 * A.cwiseAbs().maxCoeff();
-}
-
 bool solve_large(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                  std::vector<char>& active) {
   const Eigen::Index n = b.size();
@@ -446,6 +444,100 @@ bool solve_large(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::Vect
 }
 
 }  // namespace
+
+bool least_norm_psd(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs, double threshold,
+                    Eigen::VectorXd& x) {
+  const Eigen::Index n = M.rows();
+  if (n == 0) return x = Eigen::VectorXd::Zero(0), true;
+  const double first = M.diagonal().maxCoeff();
+  if (!(first > 0.0)) {
+    if (M.cwiseAbs().maxCoeff() != 0.0) return false;
+    return x = Eigen::VectorXd::Zero(n), true;
+  }
+  // LDLᵀ, left-looking, the largest diagonal of what is left to factor pivoted first (Eigen's
+  // LDLT pivots by the diagonal before its update, so its pivots do not fall in order and a
+  // zero one can come before others): a semidefinite M's pivots then fall, and the rank is
+  // where they reach the cut. W is M with the pivots' rows and columns exchanged; `left` the
+  // diagonal of what is left to factor.
+  const double cut = std::max(threshold, 1e-12) * first;
+  Eigen::MatrixXd W = M;
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd D = Eigen::VectorXd::Zero(n), left = M.diagonal(), scaled(n);
+  std::vector<Eigen::Index> perm(static_cast<std::size_t>(n));
+  std::iota(perm.begin(), perm.end(), Eigen::Index{0});
+  Eigen::Index r = 0;
+  for (; r < n; ++r) {
+    Eigen::Index p = 0;
+    left.tail(n - r).maxCoeff(&p);
+    p += r;
+    if (!(left(p) > cut)) break;
+    if (p != r) {
+      W.row(r).swap(W.row(p));
+      W.col(r).swap(W.col(p));
+      L.row(r).head(r).swap(L.row(p).head(r));
+      std::swap(left(r), left(p));
+      std::swap(perm[static_cast<std::size_t>(r)], perm[static_cast<std::size_t>(p)]);
+    }
+    D(r) = left(r);
+    L(r, r) = 1.0;
+    const Eigen::Index m = n - r - 1;
+    scaled.head(r) = D.head(r).cwiseProduct(L.row(r).head(r).transpose());
+    L.col(r).tail(m) = W.col(r).tail(m);
+    L.col(r).tail(m).noalias() -= L.bottomLeftCorner(m, r) * scaled.head(r);
+    L.col(r).tail(m) /= D(r);
+    left.tail(m) -= D(r) * L.col(r).tail(m).cwiseAbs2();
+  }
+  if (r < n && left.tail(n - r).minCoeff() < -1e-9 * first) return false;
+  // M = Pᵀ B D Bᵀ P with B = [L1; L2], L's first r columns (unit lower trapezoidal, full
+  // rank), so M⁺ = Pᵀ B (BᵀB)⁻¹ D⁻¹ (BᵀB)⁻¹ Bᵀ P. Where few rows depend on the others, through
+  // M's null space instead, spanned by N = [−L1⁻ᵀ L2ᵀ; I] (n − r columns): the right-hand
+  // side projected off it (onto M's range), solved on the first r rows, and the solution
+  // projected off it. The cheaper of the two (n r² against r² (n − r) + n (n − r)²).
+  const Eigen::Index k = n - r;
+  const auto L1 = L.topLeftCorner(r, r).triangularView<Eigen::UnitLower>();
+  Eigen::VectorXd y(n);
+  for (Eigen::Index i = 0; i < n; ++i) y(i) = rhs(perm[static_cast<std::size_t>(i)]);
+  const double by_null = static_cast<double>(r * r * k + n * k * k);
+  const double by_range = static_cast<double>(n * r * r) / 2.0;
+  if (k == 0) {
+    L1.solveInPlace(y);
+    y = y.cwiseQuotient(D);  // r == n
+    L1.transpose().solveInPlace(y);
+  } else if (by_range < by_null) {
+    const auto B = L.leftCols(r);
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(r, r);
+    G.selfadjointView<Eigen::Lower>().rankUpdate(B.transpose());
+    const Eigen::LLT<Eigen::MatrixXd> llt(G.selfadjointView<Eigen::Lower>());
+    Eigen::VectorXd z = llt.solve(B.transpose() * y);
+    z = llt.solve(Eigen::VectorXd(z.cwiseQuotient(D.head(r))));
+    y = B * z;
+  } else {
+    Eigen::MatrixXd N(n, k);
+    N.topRows(r) = -L.bottomLeftCorner(k, r).transpose();
+    L1.transpose().solveInPlace(N.topRows(r));
+    N.bottomRows(k).setIdentity();
+    const Eigen::LLT<Eigen::MatrixXd> NtN(N.transpose() * N);
+    auto off_null = [&](Eigen::VectorXd& v) { v -= N * NtN.solve(N.transpose() * v); };
+    off_null(y);
+    y.tail(k).setZero();
+    L1.solveInPlace(y.head(r));
+    y.head(r) = y.head(r).cwiseQuotient(D.head(r));
+    L1.transpose().solveInPlace(y.head(r));
+    off_null(y);
+  }
+  x.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) x(perm[static_cast<std::size_t>(i)]) = y(i);
+  return true;
+}
+
+Eigen::VectorXd least_norm(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs, double threshold) {
+  Eigen::VectorXd x;
+  if (symmetric(M) && least_norm_psd(0.5 * (M + M.transpose()), rhs, threshold, x)) return x;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+  cod.setThreshold(threshold);  // before compute(): Eigen reads it there
+  cod.compute(M);
+  return cod.solve(rhs);
+}
 
 bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                         std::vector<char>& active, bool ridge_on_stall, bool last_resort) {

@@ -51,4 +51,20 @@ bool solve_lcp_pivoting(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eige
 bool solve_lcp_dissipative(const Eigen::MatrixXd& A, const Eigen::VectorXd& b, Eigen::VectorXd& f,
                            std::vector<char>& active, bool ridge_on_stall = false);
 
+/// The minimum-norm least-squares solution of M x = rhs (M's pseudo-inverse times rhs) for a
+/// symmetric positive semidefinite M: LDLᵀ with the largest diagonal of what is left pivoted
+/// first, to rank r where that is no more than `threshold` of the first (and at least 1e-12 of
+/// it: round-off of a singular pivot); then M⁺ through M = Pᵀ B D Bᵀ P (B = L's first r
+/// columns). Measured on 240 rows, 0.3–2 ms where a complete orthogonal decomposition takes
+/// 2.7–3.4 ms, the less the more rows depend on the others. False where M is not semidefinite
+/// beyond round-off (x untouched).
+bool least_norm_psd(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs, double threshold,
+                    Eigen::VectorXd& x);
+
+/// The minimum-norm least-squares solution of any square M x = rhs, ranks cut at `threshold` of
+/// the largest: least_norm_psd where M is symmetric to 1e-12 of its largest entry (a contact
+/// matrix, to round-off of its assembly; taken as its symmetric part), a complete orthogonal
+/// decomposition otherwise (sliding friction's rows).
+Eigen::VectorXd least_norm(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs, double threshold);
+
 }  // namespace tumble

@@ -1,6 +1,7 @@
 #include "../../../src/sim/lcp.hpp"
 #include "../../../src/sim/mprgp.hpp"
 
+#include <Eigen/QR>
 #include <gtest/gtest.h>
 
 #include <random>
@@ -262,6 +263,41 @@ TEST(LcpIterative, ALargeImpactIsSolvedIterativelyAndNeverGainsEnergy) {
   for (int k = 0; k < count; ++k) EXPECT_NEAR(f(2 * k), f(2 * k + 1), 1e-6 * f.maxCoeff());
   for (int k = 0; k < 100; ++k) EXPECT_GT(f(2 * k), 0.0) << k;
   for (int k = 100; k < count; ++k) EXPECT_EQ(f(2 * k), 0.0) << k;
+}
+
+// The pivoted LDLᵀ's pseudo-inverse is the complete orthogonal decomposition's, on random
+// semidefinite matrices of every rank, right-hand sides in the range or not (least squares).
+TEST(LeastNorm, ASemidefiniteSolveIsTheCompleteOrthogonalDecompositions) {
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int n = 1 + (trial * 7) % 61;
+    const int rank = 1 + (trial * 13) % n;
+    const Eigen::MatrixXd J = Eigen::MatrixXd::NullaryExpr(rank, n, [&] { return normal(rng); });
+    const Eigen::MatrixXd M = J.transpose() * J;
+    Eigen::VectorXd rhs = Eigen::VectorXd::NullaryExpr(n, [&] { return normal(rng); });
+    if (trial % 2 == 0) rhs = M * rhs;
+    Eigen::VectorXd x;
+    ASSERT_TRUE(least_norm_psd(M, rhs, n * Eigen::NumTraits<double>::epsilon(), x));
+    const Eigen::VectorXd y = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(M).solve(rhs);
+    EXPECT_LT((x - y).norm(), 1e-9 * y.norm()) << "n " << n << " rank " << rank;
+  }
+}
+
+// Two equal rows and an independent one: a pivot by the diagonal before its update (Eigen's
+// LDLT) takes the second equal row next, whose pivot is zero, before the independent one. The
+// pseudo-inverse splits the equal rows evenly; an indefinite matrix is refused.
+TEST(LeastNorm, EqualRowsAreSplitEvenlyAndAnIndefiniteMatrixIsRefused) {
+  Eigen::MatrixXd M(3, 3);
+  M << 1.0, 1.0, 0.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.5;
+  Eigen::VectorXd rhs(3), x;
+  rhs << 2.0, 2.0, 1.0;
+  ASSERT_TRUE(least_norm_psd(M, rhs, 1e-15, x));
+  EXPECT_NEAR(x(0), 1.0, 1e-14);
+  EXPECT_NEAR(x(1), 1.0, 1e-14);
+  EXPECT_NEAR(x(2), 2.0, 1e-14);
+  M(2, 2) = -0.5;
+  EXPECT_FALSE(least_norm_psd(M, rhs, 1e-15, x));
 }
 
 }  // namespace
