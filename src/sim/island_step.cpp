@@ -1082,27 +1082,29 @@ void World::advance_island(const Island& island, double h) {
         const IslandState at_a = at_lo;
         const StepInfo info_a = lo_info;
         // The crossing on the curve first (it costs the gaps only), as a guess for the
-        // integrator's: where the curve is not across at hi (or is at lo), none.
+        // integrator's. The curve's gap is corrected by its difference from the integrator's at
+        // the bracket's ends, interpolated linearly between them, so that it brackets the
+        // crossing as the integrator's does: uncorrected, a third of the crossings in a pile of
+        // 27 dice were across on the integrator's state and not on the curve (1e-11–1e-9 m).
         auto locate = [&] {
           if (!curve) return locate_impact(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info,
                                            advanced, gap_at, true);
-          auto curve_gap = [&](double t) { return gap_at(interpolated(t)); };
-          const double gc_lo = curve_gap(lo), gc_hi = curve_gap(hi);
-          double clo = lo, guess = lo, slope = -1.0;
-          if (gc_lo >= -noise && gc_hi < -noise) {
-            IslandState on_curve;
-            StepInfo unused;
-            auto curve_at = [&](double t, StepInfo*) { return interpolated(t); };
-            locate_impact(clo, hi, std::max(gc_lo, 0.0), gc_hi, toi, noise, on_curve, unused,
-                          curve_at, gap_at, true);
-            // The gap's rate there, over 1e-3 of the bracket about it.
-            const double d = 1e-3 * (hi - lo);
-            const double a = std::max(lo, clo - d), b = std::min(hi, clo + d);
-            guess = clo;
-            slope = (curve_gap(b) - curve_gap(a)) / (b - a);
-          }
+          const double t_lo = lo, span = hi - lo;
+          const double e_lo = gap_at(at_lo) - gap_at(interpolated(lo));
+          const double e_hi = g_hi - gap_at(interpolated(hi));
+          auto corrected = [&](double t) {
+            return gap_at(interpolated(t)) + e_lo + (e_hi - e_lo) * (t - t_lo) / span;
+          };
+          double clo = lo, on_curve = lo;
+          int unused = 0;
+          auto at = [](double t, int*) { return t; };
+          locate_impact(clo, hi, std::max(corrected(lo), 0.0), corrected(hi), toi, noise, on_curve,
+                        unused, at, corrected, true);
+          // The gap's rate there, over 1e-3 of the bracket about it.
+          const double a = std::max(lo, clo - 1e-3 * span), b = std::min(hi, clo + 1e-3 * span);
+          const double slope = (corrected(b) - corrected(a)) / (b - a);
           return locate_impact_from_guess(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info,
-                                          advanced, gap_at, guess, slope, true);
+                                          advanced, gap_at, clo, slope, true);
         };
         bool located = locate();
         // Each trial is a step of its own from the stretch's start, so the states are not one
