@@ -9,6 +9,25 @@
 
 namespace tumble {
 
+/// One trial of a search at t: integrates there and moves the bracket's end on its side (the
+/// state and step information with `lo`). Returns the gap there; `touched` where the search is
+/// `open` and the gap is within the noise of zero, which ends it.
+template <class State, class Info, class Advance, class Gap>
+double try_impact_time(double t, double& lo, double& hi, double& g_lo, double& g_hi, double noise,
+                       bool open, State& at_lo, Info& lo_info, const Advance& advance,
+                       const Gap& gap, bool& touched) {
+  Info info;
+  const State s = advance(t, &info);
+  const double g = gap(s);
+  if (g >= -noise) {
+    lo = t, g_lo = g, at_lo = s, lo_info = info;
+    touched = open && g <= noise;
+  } else {
+    hi = t, g_hi = g;
+  }
+  return g;
+}
+
 /// Where the search ended: `lo` (the latest time found not yet across, with its state and step
 /// information in `at_lo` and `lo_info`), and whether the bracket shrank to `width` within 200
 /// iterations (false: the caller reports a contact tolerance missed).
@@ -31,16 +50,14 @@ bool locate_impact(double& lo, double hi, double g_lo, double g_hi, double width
     double t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
     // Bisect every few iterations so a stubborn (curved) gap still shrinks the bracket.
     if (iter % 4 == 3 || !(t > lo && t < hi)) t = 0.5 * (lo + hi);
-    Info info;
-    const State s = advance(t, &info);
-    const double g = gap(s);
+    bool touched = false;
+    const double g = try_impact_time(t, lo, hi, g_lo, g_hi, noise, open, at_lo, lo_info, advance,
+                                     gap, touched);
+    if (touched) return true;
     if (g >= -noise) {
-      lo = t, g_lo = g, at_lo = s, lo_info = info;
-      if (open && g <= noise) return true;
       if (side == -1) g_hi *= 0.5;
       side = -1;
     } else {
-      hi = t, g_hi = g;
       if (side == +1) g_lo *= 0.5;
       side = +1;
     }
@@ -67,15 +84,10 @@ bool locate_impact_from_guess(double& lo, double hi, double g_lo, double g_hi, d
   double t = guess > lo ? guess : lo + 0.5 * width;
   double t_last = NAN, g_last = NAN;
   for (int trial = 0; trial < 6 && hi - lo > width && t > lo && t < hi; ++trial) {
-    Info info;
-    const State s = advance(t, &info);
-    const double g = gap(s);
-    if (g >= -noise) {
-      lo = t, g_lo = g, at_lo = s, lo_info = info;
-      if (open && g <= noise) return true;
-    } else {
-      hi = t, g_hi = g;
-    }
+    bool touched = false;
+    const double g = try_impact_time(t, lo, hi, g_lo, g_hi, noise, open, at_lo, lo_info, advance,
+                                     gap, touched);
+    if (touched) return true;
     const double secant = (g - g_last) / (t - t_last);  // NaN at the first trial
     const double rate = secant < 0.0 ? secant : slope;
     t_last = t, g_last = g;
