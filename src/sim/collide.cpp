@@ -262,10 +262,11 @@ void reduce(std::vector<ManifoldPoint>& points, const Vec3& t1, const Vec3& t2) 
 
 // The reference face `face` of body r against body i (world vertices wr, wi): the incident face
 // clipped by the reference face's sides; points within margin of the reference plane. The
-// normal of the result points from r to i.
+// normal of the result points from r to i. `clipped`, where given, receives how many of its
+// points are not the incident face's vertices but where the reference face's sides cut it.
 Manifold face_contact(const RigidBody& r, const Pose& pr, const std::vector<Vec3>& wr, int face,
                       const RigidBody& in, const Pose& pi, const std::vector<Vec3>& wi,
-                      double margin) {
+                      double margin, int* clipped = nullptr) {
   const HullFace& ref = r.faces()[face];
   const Vec3 n = pr.R * ref.normal;
   // The incident face: the one of `in` most opposed to the reference normal.
@@ -288,9 +289,11 @@ Manifold face_contact(const RigidBody& r, const Pose& pr, const std::vector<Vec3
   }
   const double offset = n.dot(wr[ref.vertices[0]]);
   std::vector<ManifoldPoint> points;
+  if (clipped) *clipped = 0;
   for (const ClipPoint& c : poly) {
     const double sep = n.dot(c.p) - offset;
     if (sep > margin) continue;
+    if (clipped && (c.feature & 0x20000u)) ++*clipped;
     const std::uint32_t feature =
         (static_cast<std::uint32_t>(face) << 24) | (static_cast<std::uint32_t>(incident) << 16) |
         (c.feature & 0xffffu);
@@ -378,10 +381,31 @@ Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const
   // taken as the separating axes rank them.
   const Vec3 na = pa.R * a.faces()[static_cast<std::size_t>(fa.face)].normal;
   const Vec3 nb = pb.R * b.faces()[static_cast<std::size_t>(fb.face)].normal;
-  const double face_tol = -na.dot(nb) > 1.0 - 1e-6 ? tol : edge_tol;
-  const Manifold face = fb.separation > fa.separation + face_tol
-                            ? swapped(face_contact(b, pb, wb, fb.face, a, pa, wa, margin))
-                            : face_contact(a, pa, wa, fa.face, b, pb, wb, margin);
+  const bool parallel = -na.dot(nb) > 1.0 - 1e-6;
+  const double face_tol = parallel ? tol : edge_tol;
+  int clipped_a = 0, clipped_b = 0;
+  Manifold face = fb.separation > fa.separation + face_tol
+                      ? swapped(face_contact(b, pb, wb, fb.face, a, pa, wa, margin, &clipped_b))
+                      : face_contact(a, pa, wa, fa.face, b, pb, wb, margin, &clipped_a);
+  // Two faces flat on each other touch at the corners of the region where both are: each a
+  // vertex of one face inside the other, or where their sides cross. A point where the
+  // reference face's side cuts the incident face is held as a point of the incident body, which
+  // is right only at this instant: in a struck pyramid a box turning about the vertical swung
+  // its face along its neighbour's at 1.1 m/s, past the neighbour's back corners, which lay
+  // inside it. Held at the points of the swinging face where the neighbour's sides cut it, the
+  // pair left the corners behind while they went on into the turning face (4e-5 m/s after
+  // 16 µs): an impact every few microseconds, 173 in one step, and the pile's later steps went
+  // 1e-6 m deep. Where the two faces are one plane (their separations within the preference),
+  // the reference is the one whose sides cut fewer points: here the neighbour's corners on the
+  // swinging face; a small box on a large one, its own corners on the large face.
+  if (parallel && std::abs(fb.separation - fa.separation) <= face_tol) {
+    const bool took_b = face.normal_of_b;
+    const Manifold other = took_b ? face_contact(a, pa, wa, fa.face, b, pb, wb, margin, &clipped_a)
+                                  : swapped(face_contact(b, pb, wb, fb.face, a, pa, wa, margin,
+                                                         &clipped_b));
+    const int here = took_b ? clipped_b : clipped_a, there = took_b ? clipped_a : clipped_b;
+    if (other.count > 0 && (face.count == 0 || there < here)) face = other;
+  }
   // A face within the preference of the edges whose clipped region is empty: two edges
   // crossing (two tilted dice meeting edge on), whose best axis is their cross product. The
   // face gave no point where the separating axes found the pair touching, and the pair went

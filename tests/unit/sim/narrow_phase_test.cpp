@@ -63,6 +63,51 @@ TEST(NarrowPhase, BoxOnABoxFaceToFaceGivesItsFourCorners) {
   }
 }
 
+TEST(NarrowPhase, ASmallBoxOnALargeOneTouchesAtItsOwnCorners) {
+  // The same boxes with the small one first: the contact is still the small box's corners, on
+  // the large one's face (whose normal is then b's), not points of the large face where the
+  // small one's sides cut it, which would be points of the large box that slide away from the
+  // corners as soon as the small box turns on it.
+  const RigidBody upper = box(Vec3(1, 1, 1), Vec3(0.2, 1.0 + 1e-9, 0.1));
+  const RigidBody lower = box(Vec3(2, 1, 2), Vec3::Zero());
+  const Manifold m = collide(upper, pose_of(upper.state), lower, pose_of(lower.state), 1e-6);
+  ASSERT_EQ(m.count, 4);
+  EXPECT_TRUE(m.normal_of_b);
+  EXPECT_NEAR((m.normal + Vec3::UnitY()).norm(), 0.0, 1e-15);
+  for (int i = 0; i < m.count; ++i) {
+    EXPECT_NEAR(m.points[i].separation, 1e-9, 1e-15);
+    EXPECT_NEAR(m.points[i].on_a.y(), 0.5 + 1e-9, 1e-15);
+    EXPECT_NEAR(std::abs(m.points[i].on_a.x() - 0.2), 0.5, 1e-15);
+    EXPECT_NEAR(std::abs(m.points[i].on_a.z() - 0.1), 0.5, 1e-15);
+  }
+}
+
+TEST(NarrowPhase, SideBySideBoxesTouchAtTheCornersOfTheFaceThatEndsFirst) {
+  // Two unit boxes side by side (a struck pyramid's row), b 0.2 mm further back and turned 1e-4
+  // rad about the vertical so that its face leans into a's at the back: the faces meet along
+  // a's back edge, which lies inside b's face. The contact is a's two back corners on b's face:
+  // held there, they stay a's corners while b turns and its face slides past them. (a's face as
+  // the reference, the first choice between two faces of one plane, gave the points of b's face
+  // where a's sides cut it: points of b that slid off a's corners at 1.1 m/s while the corners
+  // went on into b, an impact every few microseconds.)
+  const double theta = 1e-4, back = 2e-4;
+  const RigidBody a = box(Vec3::Ones(), Vec3::Zero());
+  // a's back corners (0.5, ±0.5, -0.5) are 1e-9 behind b's face, along its normal
+  // (-cos θ, 0, sin θ) from its centre's point x_b + 0.5 (-cos θ, 0, sin θ).
+  const double c = std::cos(theta), s = std::sin(theta);
+  const Vec3 xb(0.5 + 0.5 * c - (1e-9 - s * (0.5 - back + 0.5 * s)) / c, 0.0, -back);
+  const RigidBody b = box(Vec3::Ones(), xb, Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())));
+  const Manifold m = collide(a, pose_of(a.state), b, pose_of(b.state), 1e-6);
+  ASSERT_EQ(m.count, 2);
+  EXPECT_TRUE(m.normal_of_b);
+  for (int i = 0; i < m.count; ++i) {
+    EXPECT_NEAR(m.points[i].on_a.x(), 0.5, 1e-12);
+    EXPECT_NEAR(std::abs(m.points[i].on_a.y()), 0.5, 1e-12);
+    EXPECT_NEAR(m.points[i].on_a.z(), -0.5, 1e-12);
+    EXPECT_NEAR(m.points[i].separation, -1e-9, 1e-12);
+  }
+}
+
 TEST(NarrowPhase, BoxTurnedOnAnEqualBoxGivesTheOctagon) {
   // Two unit squares, one turned 45° about the normal: they overlap in a regular octagon.
   const RigidBody lower = box(Vec3::Ones(), Vec3::Zero());
