@@ -319,6 +319,13 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     } else {
       const Vec3 ndot = frame_turn(i).cross(c.n);
       bi += 2.0 * ndot.dot(dvel);
+      // A ball touches at its centre plus its radius along the normal, so where the normal turns
+      // (a ball on a box's face as the box spins) the separation n·(x_ball − p) − r has
+      // n̈·(x_ball − p) = −r |ṅ|² besides: a 0.5 m ball against a face turning at 4 rad/s is
+      // pressed in at 8 m/s² more than the centre's acceleration says. Without it a struck
+      // pyramid's ball, pushing a spinning box, was held with no force while it sank in, and
+      // met the box again every 16 µs at 1e-4 m/s (149 impacts in 4 ms).
+      bi -= (held[i].radius_a + held[i].radius_b) * ndot.squaredNorm();
     }
     b(i) = bi;
   }
