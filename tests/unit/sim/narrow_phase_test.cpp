@@ -49,36 +49,27 @@ TEST(NarrowPhase, SphereAgainstABoxFaceEdgeAndInside) {
 }
 
 TEST(NarrowPhase, BoxOnABoxFaceToFaceGivesItsFourCorners) {
+  // In either order: the small box's corners on the large one's face. With the small one
+  // first, the large face is b's (its normal turns with b), not the small face with points of
+  // the large one where the small one's sides cut it: those would be points of the large box
+  // that slide away from the corners as soon as the small box turns on it.
   const RigidBody lower = box(Vec3(2, 1, 2), Vec3::Zero());
   const RigidBody upper = box(Vec3(1, 1, 1), Vec3(0.2, 1.0 + 1e-9, 0.1));
   EXPECT_NEAR(separation(lower, pose_of(lower.state), upper, pose_of(upper.state)), 1e-9, 1e-15);
-  const Manifold m = collide(lower, pose_of(lower.state), upper, pose_of(upper.state), 1e-6);
-  ASSERT_EQ(m.count, 4);
-  EXPECT_NEAR((m.normal - Vec3::UnitY()).norm(), 0.0, 1e-15);
-  for (int i = 0; i < m.count; ++i) {
-    EXPECT_NEAR(m.points[i].separation, 1e-9, 1e-15);
-    EXPECT_NEAR(m.points[i].on_b.y(), 0.5 + 1e-9, 1e-15);
-    EXPECT_NEAR(std::abs(m.points[i].on_b.x() - 0.2), 0.5, 1e-15);
-    EXPECT_NEAR(std::abs(m.points[i].on_b.z() - 0.1), 0.5, 1e-15);
-  }
-}
-
-TEST(NarrowPhase, ASmallBoxOnALargeOneTouchesAtItsOwnCorners) {
-  // The same boxes with the small one first: the contact is still the small box's corners, on
-  // the large one's face (whose normal is then b's), not points of the large face where the
-  // small one's sides cut it, which would be points of the large box that slide away from the
-  // corners as soon as the small box turns on it.
-  const RigidBody upper = box(Vec3(1, 1, 1), Vec3(0.2, 1.0 + 1e-9, 0.1));
-  const RigidBody lower = box(Vec3(2, 1, 2), Vec3::Zero());
-  const Manifold m = collide(upper, pose_of(upper.state), lower, pose_of(lower.state), 1e-6);
-  ASSERT_EQ(m.count, 4);
-  EXPECT_TRUE(m.normal_of_b);
-  EXPECT_NEAR((m.normal + Vec3::UnitY()).norm(), 0.0, 1e-15);
-  for (int i = 0; i < m.count; ++i) {
-    EXPECT_NEAR(m.points[i].separation, 1e-9, 1e-15);
-    EXPECT_NEAR(m.points[i].on_a.y(), 0.5 + 1e-9, 1e-15);
-    EXPECT_NEAR(std::abs(m.points[i].on_a.x() - 0.2), 0.5, 1e-15);
-    EXPECT_NEAR(std::abs(m.points[i].on_a.z() - 0.1), 0.5, 1e-15);
+  for (const bool small_first : {false, true}) {
+    const RigidBody& a = small_first ? upper : lower;
+    const RigidBody& b = small_first ? lower : upper;
+    const Manifold m = collide(a, pose_of(a.state), b, pose_of(b.state), 1e-6);
+    ASSERT_EQ(m.count, 4);
+    EXPECT_EQ(m.normal_of_b, small_first);
+    EXPECT_NEAR((m.normal - (small_first ? -1.0 : 1.0) * Vec3::UnitY()).norm(), 0.0, 1e-15);
+    for (int i = 0; i < m.count; ++i) {
+      const Vec3& corner = small_first ? m.points[i].on_a : m.points[i].on_b;
+      EXPECT_NEAR(m.points[i].separation, 1e-9, 1e-15);
+      EXPECT_NEAR(corner.y(), 0.5 + 1e-9, 1e-15);
+      EXPECT_NEAR(std::abs(corner.x() - 0.2), 0.5, 1e-15);
+      EXPECT_NEAR(std::abs(corner.z() - 0.1), 0.5, 1e-15);
+    }
   }
 }
 
