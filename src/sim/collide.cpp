@@ -1,6 +1,7 @@
 #include "collide.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <vector>
@@ -17,12 +18,29 @@ double radius_of(const RigidBody& b) {
   return b.shape() == ShapeKind::Sphere ? b.radius() : 0.0;
 }
 
-std::vector<Vec3> world_vertices(const RigidBody& b, const Pose& p) {
-  std::vector<Vec3> w;
-  w.reserve(b.vertices().size());
-  for (const Vec3& v : b.vertices()) w.push_back(p.x + p.R * v);
-  return w;
-}
+// A body's vertices in the world. A box's eight are kept inline: the separating-axis test runs
+// for every watched pair at every evaluation of an island's advancement (a third of a landing
+// pile's time), and needs no heap allocation for each of its two bodies.
+class WorldVertices {
+ public:
+  WorldVertices(const RigidBody& b, const Pose& p) : n_(b.vertices().size()) {
+    if (n_ > kInline) heap_.resize(n_);
+    Vec3* out = n_ > kInline ? heap_.data() : inline_.data();
+    for (std::size_t i = 0; i < n_; ++i) out[i] = p.x + p.R * b.vertices()[i];
+  }
+  WorldVertices(const WorldVertices&) = delete;
+  WorldVertices& operator=(const WorldVertices&) = delete;
+  std::size_t size() const { return n_; }
+  const Vec3& operator[](std::size_t i) const { return begin()[i]; }
+  const Vec3* begin() const { return n_ > kInline ? heap_.data() : inline_.data(); }
+  const Vec3* end() const { return begin() + n_; }
+
+ private:
+  static constexpr std::size_t kInline = 8;
+  std::size_t n_;
+  std::array<Vec3, kInline> inline_;
+  std::vector<Vec3> heap_;
+};
 
 // The manifold with a and b exchanged: the normal reversed, each point's two ends swapped.
 Manifold swapped(Manifold m) {
@@ -65,7 +83,7 @@ Vec3 closest_on_segment(const Vec3& a, const Vec3& b, const Vec3& c) {
   return a + t * e;
 }
 
-Closest closest_on_polyhedron(const RigidBody& h, const Pose& p, const std::vector<Vec3>& w,
+Closest closest_on_polyhedron(const RigidBody& h, const Pose& p, const WorldVertices& w,
                               const Vec3& c) {
   const auto& faces = h.faces();
   // The deepest face plane: c is inside when every face plane has it behind.
@@ -117,7 +135,7 @@ Closest closest_on_polyhedron(const RigidBody& h, const Pose& p, const std::vect
 Manifold round_polyhedron(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
                           double margin) {
   Manifold m;
-  const Closest q = closest_on_polyhedron(b, pb, world_vertices(b, pb), pa.x);
+  const Closest q = closest_on_polyhedron(b, pb, WorldVertices(b, pb), pa.x);
   // From a to b: against the outward normal of b where a's centre is.
   m.normal = -q.normal;
   m.normal_of_b = true;
@@ -137,8 +155,8 @@ struct FaceQuery {
 };
 
 // The face of `ref` whose plane has the incident body's vertices farthest in front of it.
-FaceQuery query_faces(const RigidBody& ref, const Pose& pr, const std::vector<Vec3>& wr,
-                      const std::vector<Vec3>& wi) {
+FaceQuery query_faces(const RigidBody& ref, const Pose& pr, const WorldVertices& wr,
+                      const WorldVertices& wi) {
   FaceQuery best;
   const auto& faces = ref.faces();
   for (std::size_t f = 0; f < faces.size(); ++f) {
@@ -157,7 +175,7 @@ struct EdgeQuery {
   Vec3 axis = Vec3::UnitY();
 };
 
-void project(const std::vector<Vec3>& w, const Vec3& axis, double& lo, double& hi) {
+void project(const WorldVertices& w, const Vec3& axis, double& lo, double& hi) {
   lo = INFINITY, hi = -INFINITY;
   for (const Vec3& v : w) {
     const double d = axis.dot(v);
@@ -167,8 +185,8 @@ void project(const std::vector<Vec3>& w, const Vec3& axis, double& lo, double& h
 
 // Every cross product of an edge direction of a with one of b, oriented from a to b: the
 // separation of the projections of both bodies on it.
-EdgeQuery query_edges(const RigidBody& a, const Pose& pa, const std::vector<Vec3>& wa,
-                      const RigidBody& b, const Pose& pb, const std::vector<Vec3>& wb) {
+EdgeQuery query_edges(const RigidBody& a, const Pose& pa, const WorldVertices& wa,
+                      const RigidBody& b, const Pose& pb, const WorldVertices& wb) {
   EdgeQuery best;
   const auto& da = a.edge_directions();
   const auto& db = b.edge_directions();
@@ -193,7 +211,7 @@ EdgeQuery query_edges(const RigidBody& a, const Pose& pa, const std::vector<Vec3
 
 double polyhedra_separation(const RigidBody& a, const Pose& pa, const RigidBody& b,
                             const Pose& pb, Vec3* axis) {
-  const std::vector<Vec3> wa = world_vertices(a, pa), wb = world_vertices(b, pb);
+  const WorldVertices wa(a, pa), wb(b, pb);
   const FaceQuery fa = query_faces(a, pa, wa, wb);
   const FaceQuery fb = query_faces(b, pb, wb, wa);
   // The edge axes only where a's faces do not already separate the two (every axis's gap is a
@@ -264,8 +282,8 @@ void reduce(std::vector<ManifoldPoint>& points, const Vec3& t1, const Vec3& t2) 
 // clipped by the reference face's sides; points within margin of the reference plane. The
 // normal of the result points from r to i. `clipped`, where given, receives how many of its
 // points are not the incident face's vertices but where the reference face's sides cut it.
-Manifold face_contact(const RigidBody& r, const Pose& pr, const std::vector<Vec3>& wr, int face,
-                      const RigidBody& in, const Pose& pi, const std::vector<Vec3>& wi,
+Manifold face_contact(const RigidBody& r, const Pose& pr, const WorldVertices& wr, int face,
+                      const RigidBody& in, const Pose& pi, const WorldVertices& wi,
                       double margin, int* clipped = nullptr) {
   const HullFace& ref = r.faces()[face];
   const Vec3 n = pr.R * ref.normal;
@@ -308,7 +326,7 @@ Manifold face_contact(const RigidBody& r, const Pose& pr, const std::vector<Vec3
 }
 
 // The edge of body b along direction `dir` (world) that is most extreme along `axis`.
-void support_edge(const RigidBody& b, const std::vector<Vec3>& w, const Vec3& dir,
+void support_edge(const RigidBody& b, const WorldVertices& w, const Vec3& dir,
                   const Vec3& axis, Vec3& p0, Vec3& p1) {
   double best = -INFINITY;
   for (const HullFace& f : b.faces())
@@ -345,7 +363,7 @@ void closest_between_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, co
 Manifold polyhedra(const RigidBody& a, const Pose& pa, const RigidBody& b, const Pose& pb,
                    double margin) {
   Manifold none;
-  const std::vector<Vec3> wa = world_vertices(a, pa), wb = world_vertices(b, pb);
+  const WorldVertices wa(a, pa), wb(b, pb);
   const FaceQuery fa = query_faces(a, pa, wa, wb);
   if (fa.separation > margin) return none;
   const FaceQuery fb = query_faces(b, pb, wb, wa);
@@ -425,12 +443,12 @@ double separation(const RigidBody& a, const Pose& pa, const RigidBody& b, const 
     return length - radius_of(a) - radius_of(b);
   }
   if (is_round(a)) {
-    const Closest q = closest_on_polyhedron(b, pb, world_vertices(b, pb), pa.x);
+    const Closest q = closest_on_polyhedron(b, pb, WorldVertices(b, pb), pa.x);
     if (axis) *axis = -q.normal;
     return q.distance - radius_of(a);
   }
   if (is_round(b)) {
-    const Closest q = closest_on_polyhedron(a, pa, world_vertices(a, pa), pb.x);
+    const Closest q = closest_on_polyhedron(a, pa, WorldVertices(a, pa), pb.x);
     if (axis) *axis = q.normal;
     return q.distance - radius_of(b);
   }
