@@ -7,7 +7,9 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
+#include "../../../src/sim/collide.hpp"
 #include "sim_fixtures.hpp"
 #include "tumble/world.hpp"
 
@@ -224,6 +226,48 @@ TEST(Islands, ARowOfThinPlatesIsNotOneIsland) {
     EXPECT_TRUE(same_pose(w.bodies()[i].state, start.bodies()[i].state));
   }
   EXPECT_EQ(w.contact_stats().impacts, 0);
+}
+
+TEST(Islands, TiltedDiceWhoseBoxesOverlapButWhichCannotMeetAreSteppedAlone) {
+  // Two 0.2 m dice 0.3 m apart along x and 0.1 m in height, each with a diagonal along x: each
+  // one's world box reaches 0.173 m from its centre along x and 0.158 m across, so their boxes
+  // overlap (as the hundred dice, turning on their lattice, had theirs, and were one
+  // island before any touched), while they are 0.052 m apart. Dropped on a corner each and
+  // moving apart, they land, tumble and rest without coming nearer, so each must follow, to
+  // the bit, the path it follows in a world of its own. Stepped as one island they did not:
+  // the island's floor impacts and a lone body's are the same law, not the same arithmetic.
+  WorldDef def = test::world_def(Integrator::Rk4, 1e-3, /*floor=*/true);
+  const Vec3 size = Vec3::Constant(0.2);
+  for (int i = 0; i < 2; ++i) {
+    BodyDef d = test::box_def(size, 8.0, Vec3(0.3 * i, 0.3 + 0.1 * i, 0.0));
+    d.orientation = Quat::FromTwoVectors(Vec3::Ones().normalized(), Vec3::UnitX());
+    d.velocity = Vec3(i ? 0.15 : -0.15, 0.0, 0.0);
+    d.restitution = 0.3;
+    d.friction = 0.5;
+    def.bodies.push_back(d);
+  }
+  const RigidBody a(def.bodies[0]), b(def.bodies[1]);
+  const Vec3 reach = a.half_extent_world(a.state.R) + b.half_extent_world(b.state.R);
+  ASSERT_GT(reach.x(), 0.3);  // their boxes overlap
+  ASSERT_GT(reach.y(), 0.1);
+  ASSERT_NEAR(separation(a, pose_of(a.state), b, pose_of(b.state)), 0.052, 1e-3);
+  World both(def);
+  std::vector<World> alone;
+  for (int i = 0; i < 2; ++i) {
+    WorldDef one = def;
+    one.bodies = {def.bodies[static_cast<std::size_t>(i)]};
+    alone.emplace_back(one);
+  }
+  for (int k = 0; k < 800; ++k) {  // 0.8 s: landed on a corner, tumbled, at rest
+    both.step();
+    for (std::size_t i = 0; i < 2; ++i) {
+      alone[i].step();
+      ASSERT_TRUE(same_pose(both.bodies()[i].state, alone[i].bodies()[0].state))
+          << "die " << i << " at step " << k;
+    }
+  }
+  EXPECT_GT(both.contact_stats().impacts, 2);
+  EXPECT_TRUE(both.bodies()[0].at_rest && both.bodies()[1].at_rest);
 }
 
 TEST(Islands, ARowOfDominoesFallsInItsPlane) {
