@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "../../../src/sim/collide.hpp"
 #include "sim_fixtures.hpp"
@@ -238,6 +240,79 @@ TEST(NarrowPhase, TheSeparationsAxisHasTheProjectionsThatFarApart) {
       EXPECT_NEAR(projections_apart(*p, *q, axis), sep, 1e-12) << "dx " << dx;
     }
   }
+}
+
+}  // namespace
+}  // namespace tumble
+
+namespace tumble {
+namespace {
+
+TEST(NarrowPhase, TwoBoxesSeparationIsTheBestOfAllFifteenAxesToTheBit) {
+  // separation() skips the edge axes of two boxes whose projections, from the half extents,
+  // cannot reach the best face axis. It must still give exactly what the full test gives: the
+  // largest gap over the 15 axes (6 face normals, 9 edge cross products) of the two vertex
+  // sets' projections, found in the same order. 4 000 pairs of boxes of different sizes and
+  // turns, apart, touching within 1e-3 of their size and overlapping, from a fixed sequence.
+  std::uint64_t state = 0x9e3779b97f4a7c15u;
+  auto uniform = [&] {  // splitmix64 to [0, 1): the same numbers on every machine
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  };
+  auto turn = [&] {
+    const Vec3 axis(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5);
+    return Quat(Eigen::AngleAxisd(6.3 * uniform(), axis.normalized()));
+  };
+  int edge_best = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const Vec3 size_a(0.1 + uniform(), 0.1 + uniform(), 0.1 + uniform());
+    const Vec3 size_b(0.1 + uniform(), 0.1 + uniform(), 0.1 + uniform());
+    const Vec3 at(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5);
+    const double reach = 0.5 * (size_a.norm() + size_b.norm());
+    const RigidBody a = box(size_a, Vec3(3.0, -2.0, 1.0), turn());
+    const RigidBody b = box(size_b, Vec3(3.0, -2.0, 1.0) + (0.4 + 0.8 * uniform()) * reach *
+                                                              at.normalized(), turn());
+    const Pose pa = pose_of(a.state), pb = pose_of(b.state);
+    std::vector<Vec3> wa, wb;
+    for (const Vec3& v : a.vertices()) wa.push_back(pa.x + pa.R * v);
+    for (const Vec3& v : b.vertices()) wb.push_back(pb.x + pb.R * v);
+    auto low = [](const std::vector<Vec3>& w, const Vec3& n) {
+      double m = INFINITY;
+      for (const Vec3& v : w) m = std::min(m, n.dot(v));
+      return m;
+    };
+    auto high = [&](const std::vector<Vec3>& w, const Vec3& n) { return -low(w, -n); };
+    double faces = -INFINITY, edges = -INFINITY;
+    for (const HullFace& f : a.faces()) {
+      const Vec3 n = pa.R * f.normal;
+      faces = std::max(faces, low(wb, n) - n.dot(wa[f.vertices[0]]));
+    }
+    for (const HullFace& f : b.faces()) {
+      const Vec3 n = pb.R * f.normal;
+      faces = std::max(faces, low(wa, n) - n.dot(wb[f.vertices[0]]));
+    }
+    for (const Vec3& da : a.edge_directions())
+      for (const Vec3& db : b.edge_directions()) {
+        Vec3 n = (pa.R * da).cross(pb.R * db);
+        if (n.norm() < 1e-6) continue;
+        n /= n.norm();
+        if (n.dot(pb.x - pa.x) < 0.0) n = -n;
+        edges = std::max(edges, low(wb, n) - high(wa, n));
+      }
+    // The edge axes are looked at only where a's faces do not separate the two already.
+    double best = faces;
+    double a_faces = -INFINITY;
+    for (const HullFace& f : a.faces()) {
+      const Vec3 n = pa.R * f.normal;
+      a_faces = std::max(a_faces, low(wb, n) - n.dot(wa[f.vertices[0]]));
+    }
+    if (a_faces <= 0.0) best = std::max(best, edges);
+    edge_best += a_faces <= 0.0 && edges > faces;
+    ASSERT_EQ(separation(a, pa, b, pb), best) << "pair " << k;
+  }
+  EXPECT_GT(edge_best, 100);  // edge axes decided a good share of them
 }
 
 }  // namespace
