@@ -1,6 +1,9 @@
 // tumble's command line: parses, dispatches to one subcommand, and turns every failure into one
 // message on stderr and the exit code SPEC.md gives (2 bad input, 3 environment / I/O).
 #include <CLI/CLI.hpp>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 #include <cstdio>
 #include <exception>
 #include <optional>
@@ -42,6 +45,16 @@ int main(int argc, char** argv) {
   // First of all: a Ctrl-C, SIGTERM, SIGHUP or SIGQUIT that comes while the command line is still
   // being read (a slow start on a busy machine) must end the run cleanly too, not kill it.
   cli::install_interrupt_handlers();
+#if defined(__GLIBC__)
+  // Freed memory stays with the process (up to 256 MiB at the heap's top, blocks up to 32 MiB
+  // from the heap) rather than going back to the kernel at each free: an island's contact
+  // solves allocate and free matrices of a few hundred kB many times a step, and glibc's
+  // default (128 kB, then the largest freed) gave the pages back and faulted them in again each
+  // time. A landing pile of 27 dice spent 36 % of its time so (page faults and TLB flushes, in
+  // a virtual machine): 4.8 → 3.0 s. Peak memory is the same (50 → 52 MB).
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+#endif
   CLI::App app{"tumble: physically correct rigid-body clips, rendered headless", "tumble"};
   app.set_version_flag("--version", cli::version_text);
   app.require_subcommand(1);
