@@ -260,11 +260,81 @@ std::vector<IslandDynamics::Free> IslandDynamics::free_motion(const IslandState&
   return k;
 }
 
+IslandDynamics::~IslandDynamics() = default;
+
 IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std::vector<Free>& k,
                                                  const Frames& f) const {
   const std::vector<IslandContact>& held = *held_;
   const int n = static_cast<int>(held.size());
   const std::vector<MassInfo> m = masses(v_, s);
+  std::vector<char> local;
+  std::vector<char>& active = active_ ? *active_ : local;
+  // The held contacts' forces couple only through the bodies they share: the contact matrix is
+  // block diagonal over the groups of contacts joined by members (the floor joins none), and
+  // each group is a problem of its own. A landing heap of a hundred dice held 55 contacts in an
+  // evaluation, the largest group 7: solved whole, the dense solves' work (the cube of the
+  // rows) was 200 times the groups'.
+  std::vector<int> root(m.size());
+  std::iota(root.begin(), root.end(), 0);
+  auto find = [&](int x) {
+    while (root[static_cast<std::size_t>(x)] != x)
+      x = root[static_cast<std::size_t>(x)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(x)])];
+    return x;
+  };
+  for (int i = 0; i < n; ++i)
+    if (f.a[i].member >= 0) root[static_cast<std::size_t>(find(f.a[i].member))] = find(f.b[i].member);
+  std::vector<int> group_of_root(m.size(), -1);
+  std::vector<std::vector<int>> groups;  // contact indices, ascending; groups by their first
+  for (int i = 0; i < n; ++i) {
+    int& g = group_of_root[static_cast<std::size_t>(find(f.b[i].member))];
+    if (g < 0) g = static_cast<int>(groups.size()), groups.emplace_back();
+    groups[static_cast<std::size_t>(g)].push_back(i);
+  }
+  if (groups.size() <= 1) return solve_group(s, k, f, m, held, active, cache_);
+  if (cache_ && group_caches_.size() != groups.size()) {
+    group_caches_.clear();
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      group_caches_.push_back(std::make_unique<HeldRowsCache>());
+  }
+  if (active.size() != static_cast<std::size_t>(n)) active.assign(static_cast<std::size_t>(n), 1);
+  HeldForces out;
+  out.normal = Eigen::VectorXd::Zero(n);
+  out.friction.assign(static_cast<std::size_t>(n), Vec3::Zero());
+  out.on_b.assign(static_cast<std::size_t>(n), Vec3::Zero());
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    const std::vector<int>& rows = groups[g];
+    std::vector<IslandContact> part;
+    Frames pf;
+    std::vector<char> part_active;
+    for (int i : rows) {
+      part.push_back(held[static_cast<std::size_t>(i)]);
+      pf.frame.push_back(f.frame[static_cast<std::size_t>(i)]);
+      pf.a.push_back(f.a[static_cast<std::size_t>(i)]);
+      pf.b.push_back(f.b[static_cast<std::size_t>(i)]);
+      pf.round_pair.push_back(f.round_pair[static_cast<std::size_t>(i)]);
+      part_active.push_back(active[static_cast<std::size_t>(i)]);
+    }
+    HeldRowsCache* part_cache = cache_ ? group_caches_[g].get() : nullptr;
+    const HeldForces r = solve_group(s, k, pf, m, part, part_active, part_cache);
+    if (part_cache)
+      cache_->iterative_residual =
+          std::max(cache_->iterative_residual, part_cache->iterative_residual);
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      const auto i = static_cast<std::size_t>(rows[j]);
+      out.normal(static_cast<Eigen::Index>(i)) = r.normal(static_cast<Eigen::Index>(j));
+      out.friction[i] = r.friction[j];
+      out.on_b[i] = r.on_b[j];
+      if (part_active.size() == rows.size()) active[i] = part_active[j];
+    }
+  }
+  return out;
+}
+
+IslandDynamics::HeldForces IslandDynamics::solve_group(
+    const IslandState& s, const std::vector<Free>& k, const Frames& f,
+    const std::vector<MassInfo>& m, const std::vector<IslandContact>& held,
+    std::vector<char>& active, HeldRowsCache* cache) const {
+  const int n = static_cast<int>(held.size());
   auto point_vel = [&](const SideGeometry& g, const Vec3& lever) -> Vec3 {
     if (g.member < 0) return Vec3::Zero();
     const Free& q = k[g.member];
@@ -358,8 +428,6 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     bt(r) = bi;
   }
   HeldForces out;
-  std::vector<char> local;
-  std::vector<char>& active = active_ ? *active_ : local;
   // The forces along directions d (the normal, less friction where a contact slides); false
   // where no method reached an exact solution.
   const bool large = n + static_cast<int>(t.size()) > kSparseRows;
@@ -381,9 +449,9 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
       HeldRows rows{&f, &m, &d, b, sticking, t, bt};
       Eigen::VectorXd fE;
       double residual = 0.0;
-      const bool solved = solve_held_rows_sparse(rows, active, out.normal, fE, cache_, &residual);
-      if (cache_ && residual > 1e-9)
-        cache_->iterative_residual = std::max(cache_->iterative_residual, residual);
+      const bool solved = solve_held_rows_sparse(rows, active, out.normal, fE, cache, &residual);
+      if (cache && residual > 1e-9)
+        cache->iterative_residual = std::max(cache->iterative_residual, residual);
       if (solved) {
         for (std::size_t j = 0; j < sticking.size(); ++j)
           out.friction[static_cast<std::size_t>(sticking[j])] =
@@ -404,7 +472,7 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     for (int i = 0; i < n; ++i) sliding_now[static_cast<std::size_t>(i)] = d[i] != f.frame[i].n;
     const bool friction = !sticking.empty() ||
                           std::find(sliding_now.begin(), sliding_now.end(), 1) != sliding_now.end();
-    if (friction && cache_ && cache_->unsettled(sticking, sliding_now)) return false;
+    if (friction && cache && cache->unsettled(sticking, sliding_now)) return false;
     const Eigen::MatrixXd A = contact_matrix(f, m, d);
     // With sliding friction A is not semidefinite, and the LCP may have several solutions: a box
     // sliding flat on its face is held by all four corners, or (as Dantzig's pivoting may find
@@ -494,7 +562,7 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
         out.friction[static_cast<std::size_t>(sticking[j])] =
             fE(2 * j) * t[2 * j] + fE(2 * j + 1) * t[2 * j + 1];
     }
-    if (!ok && friction && cache_) cache_->remember_unsettled(sticking, sliding_now);
+    if (!ok && friction && cache) cache->remember_unsettled(sticking, sliding_now);
     return ok;
   };
   std::vector<Vec3> along = dir;

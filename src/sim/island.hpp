@@ -5,6 +5,7 @@
 // line of impacts. Islands that do not touch are stepped independently.
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "collide.hpp"
@@ -89,6 +90,7 @@ struct IslandView {
 ContactFrame contact_frame(const IslandView& v, const IslandContact& c, const IslandState& s);
 
 struct Frames;
+struct MassInfo;
 class HeldRowsCache;
 
 /// dY/dt of every member: gravity, drag and the contact forces at the held contacts, found by
@@ -104,6 +106,9 @@ class IslandDynamics {
         evaluations_(evaluations),
         failed_(solve_failed),
         cache_(cache) {}
+  ~IslandDynamics();
+  IslandDynamics(const IslandDynamics&) = delete;
+  IslandDynamics& operator=(const IslandDynamics&) = delete;
 
   std::vector<Rate> operator()(const IslandState& s) const;
   /// What the held contacts exert at a state: per contact, its normal force (N), its static
@@ -127,6 +132,10 @@ class IslandDynamics {
   };
   std::vector<Free> free_motion(const IslandState& s) const;
   HeldForces solve(const IslandState& s, const std::vector<Free>& k, const Frames& f) const;
+  /// One group of held contacts that share no body with the others.
+  HeldForces solve_group(const IslandState& s, const std::vector<Free>& k, const Frames& f,
+                         const std::vector<MassInfo>& m, const std::vector<IslandContact>& held,
+                         std::vector<char>& active, HeldRowsCache* cache) const;
 
   IslandView v_;
   const std::vector<IslandContact>* held_;
@@ -134,6 +143,8 @@ class IslandDynamics {
   long* evaluations_;
   bool* failed_;
   HeldRowsCache* cache_;  ///< a large island's last sparse factorisation (held_rows.hpp)
+  /// Each group's own (the held contacts, and so the groups, are fixed for a stretch).
+  mutable std::vector<std::unique_ptr<HeldRowsCache>> group_caches_;
 };
 
 /// Integrates an island over h from s with `how.method` (the same schemes as a single body).
