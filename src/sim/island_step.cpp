@@ -1128,10 +1128,15 @@ void World::advance_island(const Island& island, double h) {
       IslandState s_b, at_lo;
       {
         bool interpolate = curve;
-        for (int iter = 0; iter < 10000; ++iter) {
+        // At most 10 000 evaluations; the last one is the stretch's end, every pair measured
+        // there. (Leaving the loop at the cap instead took the stretch's end unmeasured: in a
+        // landing heap of a hundred dice, two dice spinning against each other at 8 m/s and
+        // 3 µm apart were due every 0.35 µs, and the end they took was 1.7 mm through.)
+        for (int iter = 0;; ++iter) {
           double soonest = INFINITY;
           for (double d : due) soonest = std::min(soonest, d);
           t_b = std::min(remaining, std::max(soonest, t_a + 1e3 * min_span));
+          if (iter == 9999) t_b = remaining;
           const bool between = t_b < remaining;
           if (between && interpolate) {
             measure_due(curve_part(t_b), t_b, false, false, true);
