@@ -111,6 +111,13 @@ struct HeldRowsCache::Impl {
 HeldRowsCache::HeldRowsCache() : impl(std::make_unique<Impl>()) {}
 HeldRowsCache::~HeldRowsCache() = default;
 
+HeldRowsCache& HeldRowsCache::group(const GroupKey& key) {
+  for (auto& [k, cache] : groups_)
+    if (k == key) return *cache;
+  groups_.emplace_back(key, std::make_unique<HeldRowsCache>());
+  return *groups_.back().second;
+}
+
 bool HeldRowsCache::unsettled(const std::vector<int>& sticking,
                               const std::vector<char>& sliding) const {
   for (const auto& [st, sl] : unsettled_)

@@ -3,6 +3,7 @@
 // solve for islands too large for the dense one (island.cpp's IslandDynamics::solve).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -68,8 +69,14 @@ class HeldRowsCache {
   bool unsettled(const std::vector<int>& sticking, const std::vector<char>& sliding) const;
   void remember_unsettled(const std::vector<int>& sticking, const std::vector<char>& sliding);
 
+  /// The cache of one group of held contacts that share no body with the others (solved on
+  /// its own: IslandDynamics::solve), by its contacts' (pair, feature): kept as long as this one.
+  using GroupKey = std::vector<std::pair<int, std::uint32_t>>;
+  HeldRowsCache& group(const GroupKey& key);
+
  private:
   std::vector<std::pair<std::vector<int>, std::vector<char>>> unsettled_;
+  std::vector<std::pair<GroupKey, std::unique_ptr<HeldRowsCache>>> groups_;
 };
 
 /// Solves the held rows by block principal pivoting (Júdice and Pires) on sparse matrices,

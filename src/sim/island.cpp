@@ -291,11 +291,6 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     groups[static_cast<std::size_t>(g)].push_back(i);
   }
   if (groups.size() <= 1) return solve_group(s, k, f, m, held, active, cache_);
-  if (cache_ && group_caches_.size() != groups.size()) {
-    group_caches_.clear();
-    for (std::size_t g = 0; g < groups.size(); ++g)
-      group_caches_.push_back(std::make_unique<HeldRowsCache>());
-  }
   if (active.size() != static_cast<std::size_t>(n)) active.assign(static_cast<std::size_t>(n), 1);
   HeldForces out;
   out.normal = Eigen::VectorXd::Zero(n);
@@ -306,7 +301,9 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     std::vector<IslandContact> part;
     Frames pf;
     std::vector<char> part_active;
+    HeldRowsCache::GroupKey key;
     for (int i : rows) {
+      key.emplace_back(held[static_cast<std::size_t>(i)].pair, held[static_cast<std::size_t>(i)].feature);
       part.push_back(held[static_cast<std::size_t>(i)]);
       pf.frame.push_back(f.frame[static_cast<std::size_t>(i)]);
       pf.a.push_back(f.a[static_cast<std::size_t>(i)]);
@@ -314,7 +311,7 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
       pf.round_pair.push_back(f.round_pair[static_cast<std::size_t>(i)]);
       part_active.push_back(active[static_cast<std::size_t>(i)]);
     }
-    HeldRowsCache* part_cache = cache_ ? group_caches_[g].get() : nullptr;
+    HeldRowsCache* part_cache = cache_ ? &cache_->group(key) : nullptr;
     const HeldForces r = solve_group(s, k, pf, m, part, part_active, part_cache);
     if (part_cache)
       cache_->iterative_residual =

@@ -143,8 +143,6 @@ class IslandDynamics {
   long* evaluations_;
   bool* failed_;
   HeldRowsCache* cache_;  ///< a large island's last sparse factorisation (held_rows.hpp)
-  /// Each group's own (the held contacts, and so the groups, are fixed for a stretch).
-  mutable std::vector<std::unique_ptr<HeldRowsCache>> group_caches_;
 };
 
 /// Integrates an island over h from s with `how.method` (the same schemes as a single body).
