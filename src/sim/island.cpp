@@ -276,13 +276,13 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
   // rows) was 200 times the groups'.
   std::vector<int> root(m.size());
   std::iota(root.begin(), root.end(), 0);
+  auto at = [&](int x) -> int& { return root[static_cast<std::size_t>(x)]; };
   auto find = [&](int x) {
-    while (root[static_cast<std::size_t>(x)] != x)
-      x = root[static_cast<std::size_t>(x)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(x)])];
+    while (at(x) != x) x = at(x) = at(at(x));
     return x;
   };
   for (int i = 0; i < n; ++i)
-    if (f.a[i].member >= 0) root[static_cast<std::size_t>(find(f.a[i].member))] = find(f.b[i].member);
+    if (f.a[i].member >= 0) at(find(f.a[i].member)) = find(f.b[i].member);
   std::vector<int> group_of_root(m.size(), -1);
   std::vector<std::vector<int>> groups;  // contact indices, ascending; groups by their first
   for (int i = 0; i < n; ++i) {
@@ -303,7 +303,8 @@ IslandDynamics::HeldForces IslandDynamics::solve(const IslandState& s, const std
     std::vector<char> part_active;
     HeldRowsCache::GroupKey key;
     for (int i : rows) {
-      key.emplace_back(held[static_cast<std::size_t>(i)].pair, held[static_cast<std::size_t>(i)].feature);
+      const IslandContact& c = held[static_cast<std::size_t>(i)];
+      key.emplace_back(c.pair, c.feature);
       part.push_back(held[static_cast<std::size_t>(i)]);
       pf.frame.push_back(f.frame[static_cast<std::size_t>(i)]);
       pf.a.push_back(f.a[static_cast<std::size_t>(i)]);
