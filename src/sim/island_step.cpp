@@ -973,30 +973,28 @@ void World::advance_island(const Island& island, double h) {
       };
       auto curve_state = [&](const Hermite& hc, int k, BodyState& o) {
         const auto [th, u, h00, h10, h01, h11] = hc;
-        {
-          const RigidBody& b = view.member(k);
-          const BodyState& a = curve_from[k];
-          const BodyState& e = end[k];
-          o.x = h00 * a.x + h10 * a.P * b.inverse_mass() + h01 * e.x + h11 * e.P * b.inverse_mass();
-          o.P = u * a.P + th * e.P;
-          o.L = u * a.L + th * e.L;
-          if (b.is_particle()) return;
-          const Vec3& wa = curve_omega[static_cast<std::size_t>(k)];
-          const Vec3& we = motion[1][static_cast<std::size_t>(k)].omega;
-          if (def_.rotation == RotationRep::Quaternion) {
-            // q̇ = ½ (0, ω) ⊗ q
-            auto rate = [](const Quat& q, const Vec3& w) {
-              return Vec4(-0.5 * w.dot(q.vec()), 0.5 * (q.w() * w + w.cross(q.vec())).x(),
-                          0.5 * (q.w() * w + w.cross(q.vec())).y(),
-                          0.5 * (q.w() * w + w.cross(q.vec())).z());
-            };
-            auto wxyz = [](const Quat& q) { return Vec4(q.w(), q.x(), q.y(), q.z()); };
-            const Vec4 c = h00 * wxyz(a.q) + h10 * rate(a.q, wa) + h01 * wxyz(e.q) +
-                           h11 * rate(e.q, we);
-            o.q = Quat(c(0), c(1), c(2), c(3));
-          } else {
-            o.R = h00 * a.R + h10 * star(wa) * a.R + h01 * e.R + h11 * star(we) * e.R;
-          }
+        const RigidBody& b = view.member(k);
+        const BodyState& a = curve_from[k];
+        const BodyState& e = end[k];
+        o.x = h00 * a.x + h10 * a.P * b.inverse_mass() + h01 * e.x + h11 * e.P * b.inverse_mass();
+        o.P = u * a.P + th * e.P;
+        o.L = u * a.L + th * e.L;
+        if (b.is_particle()) return;
+        const Vec3& wa = curve_omega[static_cast<std::size_t>(k)];
+        const Vec3& we = motion[1][static_cast<std::size_t>(k)].omega;
+        if (def_.rotation == RotationRep::Quaternion) {
+          // q̇ = ½ (0, ω) ⊗ q
+          auto rate = [](const Quat& q, const Vec3& w) {
+            return Vec4(-0.5 * w.dot(q.vec()), 0.5 * (q.w() * w + w.cross(q.vec())).x(),
+                        0.5 * (q.w() * w + w.cross(q.vec())).y(),
+                        0.5 * (q.w() * w + w.cross(q.vec())).z());
+          };
+          auto wxyz = [](const Quat& q) { return Vec4(q.w(), q.x(), q.y(), q.z()); };
+          const Vec4 c = h00 * wxyz(a.q) + h10 * rate(a.q, wa) + h01 * wxyz(e.q) +
+                         h11 * rate(e.q, we);
+          o.q = Quat(c(0), c(1), c(2), c(3));
+        } else {
+          o.R = h00 * a.R + h10 * star(wa) * a.R + h01 * e.R + h11 * star(we) * e.R;
         }
       };
       auto interpolated = [&](double t) {
@@ -1128,7 +1126,8 @@ void World::advance_island(const Island& island, double h) {
       IslandState s_b, at_lo;
       {
         bool interpolate = curve;
-        // At most 10 000 evaluations; the last one is the stretch's end, every pair measured
+        constexpr int kMaxEvaluations = 10000;
+        // At most kMaxEvaluations; the last one is the stretch's end, every pair measured
         // there. (Leaving the loop at the cap instead took the stretch's end unmeasured: in a
         // landing heap of a hundred dice, two dice spinning against each other at 8 m/s and
         // 3 µm apart were due every 0.35 µs, and the end they took was 1.7 mm through.)
@@ -1136,7 +1135,7 @@ void World::advance_island(const Island& island, double h) {
           double soonest = INFINITY;
           for (double d : due) soonest = std::min(soonest, d);
           t_b = std::min(remaining, std::max(soonest, t_a + 1e3 * min_span));
-          if (iter == 9999) t_b = remaining;
+          if (iter == kMaxEvaluations - 1) t_b = remaining;
           const bool between = t_b < remaining;
           if (between && interpolate) {
             measure_due(curve_part(t_b), t_b, false, false, true);
