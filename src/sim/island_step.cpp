@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <queue>
 #include <string>
 
 #include "collide.hpp"
@@ -1062,8 +1063,45 @@ void World::advance_island(const Island& island, double h) {
       // pairs sank to the touch distance while the slack of an empty event reached pairs apart:
       // see `slack_applies`.)
       std::vector<std::size_t> crossed;
-      auto measured_at = [&](std::size_t w, double t) {
-        return !(due[w] > t) || (pair_touching[watched[w]] && !pair_held[watched[w]]);
+      // Which pairs are due is kept in a heap of their due times, soonest first (an entry whose
+      // time is no longer its pair's is stale, and skipped), with the touching pairs not held,
+      // which are measured at every evaluation. A landing heap of a hundred dice watched 317
+      // pairs and measured 1.2 of them an evaluation: scanning all of them for the due ones
+      // three times an evaluation (1.1 M evaluations to 0.36 s) was a tenth of its run.
+      // A due time that is not a number is due at once.
+      auto due_key = [&](std::size_t w) { return std::isnan(due[w]) ? -INFINITY : due[w]; };
+      using DueEntry = std::pair<double, std::size_t>;
+      std::priority_queue<DueEntry, std::vector<DueEntry>, std::greater<>> due_heap;
+      std::vector<std::size_t> every_time;  // the touching pairs not held
+      for (std::size_t w = 0; w < watched.size(); ++w)
+        if (pair_touching[watched[w]] && !pair_held[watched[w]]) every_time.push_back(w);
+      auto schedule_all = [&] {
+        std::vector<DueEntry> entries;
+        entries.reserve(watched.size());
+        for (std::size_t w = 0; w < watched.size(); ++w) entries.emplace_back(due_key(w), w);
+        due_heap = decltype(due_heap)(std::greater<>(), std::move(entries));
+      };
+      schedule_all();
+      auto skip_stale = [&] {
+        while (!due_heap.empty() && due_heap.top().first != due_key(due_heap.top().second))
+          due_heap.pop();
+      };
+      // The pairs due at t, in pair order (taken off the heap: measure_due measures them all).
+      std::vector<std::size_t> due_now;
+      double taken_at = NAN;  // the time due_now was taken for, until it is measured
+      auto take_due = [&](double t) {
+        taken_at = t;
+        due_now = every_time;
+        for (skip_stale(); !due_heap.empty() && !(due_heap.top().first > t); skip_stale()) {
+          due_now.push_back(due_heap.top().second);
+          due_heap.pop();
+        }
+        std::sort(due_now.begin(), due_now.end());
+        due_now.erase(std::unique(due_now.begin(), due_now.end()), due_now.end());
+      };
+      auto soonest_due = [&] {
+        skip_stale();
+        return due_heap.empty() ? INFINITY : due_heap.top().first;
       };
       // At the stretch's end (`at_end`: `at` is `end`) every pair's separation is known; with
       // `ready`, `at` is normalised already.
@@ -1074,8 +1112,11 @@ void World::advance_island(const Island& island, double h) {
                                 : ready ? at
                                         : (ns_buffer = normalized(at, def_.rotation));
         crossed.clear();
-        for (std::size_t w = 0; w < watched.size(); ++w) {
-          if (!all && !measured_at(w, t)) continue;
+        if (!all && !(taken_at == t)) take_due(t);
+        taken_at = NAN;
+        const std::size_t count = all ? watched.size() : due_now.size();
+        for (std::size_t i = 0; i < count; ++i) {
+          const std::size_t w = all ? i : due_now[i];
           if (at_end) {
             g_now[w] = sep_end[w] - gap_offset[w];
             axis_now[w] = axis_end_n[w];
@@ -1091,8 +1132,10 @@ void World::advance_island(const Island& island, double h) {
           } else {
             seen[w] = t;
             due[w] = due_after(w, t, ns);
+            if (!all) due_heap.emplace(due_key(w), w);
           }
         }
+        if (all) schedule_all();
       };
       // The last time every pair was measured clear on the integrator's own state (the
       // bracket's start where one is found across), with that state and the gaps there.
@@ -1106,10 +1149,11 @@ void World::advance_island(const Island& island, double h) {
       // of a hundred dice on the curve whole at every evaluation was 38 % of its time.
       IslandState part = start;
       std::vector<char> wanted(static_cast<std::size_t>(members));
+      // The pairs due at t are taken here, for the measure_due at t that follows.
       auto curve_part = [&](double t) -> const IslandState& {
         std::fill(wanted.begin(), wanted.end(), 0);
-        for (std::size_t w = 0; w < watched.size(); ++w) {
-          if (!measured_at(w, t)) continue;
+        take_due(t);
+        for (std::size_t w : due_now) {
           const IslandPair& pr = island.pairs[watched[w]];
           for (const Side* side : {&pr.a, &pr.b})
             if (side->kind == Side::Member) wanted[static_cast<std::size_t>(side->index)] = 1;
@@ -1132,9 +1176,7 @@ void World::advance_island(const Island& island, double h) {
         // landing heap of a hundred dice, two dice spinning against each other at 8 m/s and
         // 3 µm apart were due every 0.35 µs, and the end they took was 1.7 mm through.)
         for (int iter = 0;; ++iter) {
-          double soonest = INFINITY;
-          for (double d : due) soonest = std::min(soonest, d);
-          t_b = std::min(remaining, std::max(soonest, t_a + 1e3 * min_span));
+          t_b = std::min(remaining, std::max(soonest_due(), t_a + 1e3 * min_span));
           if (iter == kMaxEvaluations - 1) t_b = remaining;
           const bool between = t_b < remaining;
           if (between && interpolate) {
