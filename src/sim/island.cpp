@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <cmath>
 
@@ -137,13 +138,15 @@ Eigen::MatrixXd contact_matrix(const Frames& f, const std::vector<MassInfo>& m,
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   // Each member's rows and sides, in row order: a unit impulse at j moves only the rows of its
   // own members (a heap's matrix is mostly zeros; scanning every row for them was 8 % of a
-  // landing heap of a hundred dice).
-  std::vector<std::vector<std::pair<int, int>>> rows_of(m.size());
+  // landing heap of a hundred dice). Entries (member, row, side), sorted.
+  std::vector<std::array<int, 3>> rows_of;
+  rows_of.reserve(static_cast<std::size_t>(2 * n));
   for (int i = 0; i < n; ++i)
     for (int side_i = 0; side_i < 2; ++side_i) {
       const SideGeometry& gi = side_i == 0 ? f.a[i] : f.b[i];
-      if (gi.member >= 0) rows_of[static_cast<std::size_t>(gi.member)].emplace_back(i, side_i);
+      if (gi.member >= 0) rows_of.push_back({gi.member, i, side_i});
     }
+  std::sort(rows_of.begin(), rows_of.end());
   for (int j = 0; j < n; ++j) {
     // The velocity change of member k per unit impulse at j: (dv, dω).
     for (int side = 0; side < 2; ++side) {
@@ -153,7 +156,10 @@ Eigen::MatrixXd contact_matrix(const Frames& f, const std::vector<MassInfo>& m,
       const MassInfo& mk = m[gj.member];
       const Vec3 dv = sign_j * mk.inv_m * dir[j];
       const Vec3 dw = sign_j * (mk.Iinv * gj.lever.cross(dir[j]));
-      for (const auto& [i, side_i] : rows_of[static_cast<std::size_t>(gj.member)]) {
+      const auto first = std::lower_bound(rows_of.begin(), rows_of.end(),
+                                          std::array<int, 3>{gj.member, -1, -1});
+      for (auto e = first; e != rows_of.end() && (*e)[0] == gj.member; ++e) {
+        const int i = (*e)[1], side_i = (*e)[2];
         const SideGeometry& gi = side_i == 0 ? f.a[i] : f.b[i];
         const double sign_i = side_i == 0 ? -1.0 : 1.0;
         A(i, j) += sign_i * f.frame[i].n.dot(dv + dw.cross(gi.point_lever));
