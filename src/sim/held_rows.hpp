@@ -109,6 +109,14 @@ bool solve_held_rows_sparse(const HeldRows& rows, std::vector<char>& active,
 /// relative on consistent systems; a residual of 1e-10 |M| |x|), the dense one if that fails.
 Eigen::VectorXd least_norm_solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs);
 
+/// least_norm_solve of a block diagonal M, block by block (`group`: each row's block, from 0;
+/// M's entries between blocks are not read): the same least-norm answer, to round-off, at the
+/// cost of its blocks, not of the whole. A block with no row is skipped; one block is
+/// least_norm_solve itself. At the impacts of a landing heap of a hundred dice, the friction's
+/// dense solves over every touching contact of the island were a fifth of the run.
+Eigen::VectorXd block_least_norm(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs,
+                                 const std::vector<int>& group);
+
 /// Above this many rows an island's contact problems are solved sparse first (held rows,
 /// least_norm_solve); below it, dense. Both answers are exact, and give the same accelerations
 /// (to 1e-9 of the largest, checked on every held-force solve of the dominoes scene to

@@ -86,34 +86,6 @@ std::vector<int> row_groups(const IslandView& v, const std::vector<IslandContact
   return of;
 }
 
-// least_norm_solve of a block diagonal M, block by block (`group`: each row's block): the same
-// least-norm answer, to round-off, at the cost of its blocks, not of the whole. At the impacts
-// of a landing heap of a hundred dice, the friction's dense solves over every touching contact
-// of the island were a fifth of the run. One block: least_norm_solve itself.
-Eigen::VectorXd block_least_norm(const Eigen::MatrixXd& M, const Eigen::VectorXd& rhs,
-                                 const std::vector<int>& group) {
-  const Eigen::Index n = M.rows();
-  int blocks = 0;
-  for (int g : group) blocks = std::max(blocks, g + 1);
-  if (blocks <= 1) return least_norm_solve(M, rhs);
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-  std::vector<std::vector<Eigen::Index>> rows(static_cast<std::size_t>(blocks));
-  for (Eigen::Index r = 0; r < n; ++r) rows[static_cast<std::size_t>(group[r])].push_back(r);
-  for (const std::vector<Eigen::Index>& b : rows) {
-    const auto q = static_cast<Eigen::Index>(b.size());
-    if (q == 0) continue;  // a subset of the rows (stop_points) may leave a block out
-    Eigen::MatrixXd Mb(q, q);
-    Eigen::VectorXd rb(q);
-    for (Eigen::Index i = 0; i < q; ++i) {
-      rb(i) = rhs(b[i]);
-      for (Eigen::Index j = 0; j < q; ++j) Mb(i, j) = M(b[i], b[j]);
-    }
-    const Eigen::VectorXd xb = least_norm_solve(Mb, rb);
-    for (Eigen::Index i = 0; i < q; ++i) x(b[i]) = xb(i);
-  }
-  return x;
-}
-
 // Per member: inverse mass and world inverse inertia at s.
 std::vector<MassInfo> masses(const IslandView& v, const IslandState& s) {
   std::vector<MassInfo> m(s.size());
