@@ -555,8 +555,9 @@ void World::advance_island(const Island& island, double h) {
     }
     return out;
   };
-  auto separation_of = [&](const IslandContact& c, const IslandState& s) {
-    const ContactFrame f = contact_frame(view, c, normalized(s, def_.rotation));
+  // At a normalised state (`posed`).
+  auto separation_of = [&](const IslandContact& c, const IslandState& posed) {
+    const ContactFrame f = contact_frame(view, c, posed);
     return f.n.dot(f.pb - f.pa);
   };
   auto write_back = [&] {
@@ -998,12 +999,6 @@ void World::advance_island(const Island& island, double h) {
           o.R = h00 * a.R + h10 * star(wa) * a.R + h01 * e.R + h11 * star(we) * e.R;
         }
       };
-      auto interpolated = [&](double t) {
-        const Hermite hc = hermite(t);
-        IslandState out = curve_from;
-        for (int k = 0; k < members; ++k) curve_state(hc, k, out[k]);
-        return out;
-      };
       bool curve = true;
       for (const Stepping& st : per_body) curve &= st.method == Integrator::Rk4;
       double min_span = INFINITY;
@@ -1236,11 +1231,34 @@ void World::advance_island(const Island& island, double h) {
         for (std::size_t w : crossed) crossed_pairs.push_back(watched[w]);
         // Regula falsi (Illinois) on the smallest gap of the pairs found across, as for the
         // floor, from [t_a, t_b] to within the finest pair's toi_time.
-        auto gap_at = [&](const IslandState& s) {
-          const IslandState ns = normalized(s, def_.rotation);
+        // Only the members of the pairs found across are read: only they are put into
+        // `gap_state` (from a state, or on the curve) and normalised; the rest is stale. (With
+        // the held contacts' depths below, normalising a landing heap of a hundred dice whole
+        // was 5 % of its run's time, to 0.36 s; 1 % after.)
+        IslandState gap_state = start;
+        auto gap_with = [&](auto&& put) {
+          for (std::size_t w : crossed) {
+            const IslandPair& pr = island.pairs[watched[w]];
+            for (const Side* side : {&pr.a, &pr.b}) {
+              if (side->kind != Side::Member) continue;
+              BodyState& o = gap_state[side->index];
+              put(side->index, o);
+              normalize(o, def_.rotation);
+            }
+          }
           double g = INFINITY;
-          for (std::size_t w : crossed) g = std::min(g, pair_gap(w, ns));
+          for (std::size_t w : crossed) g = std::min(g, pair_gap(w, gap_state));
           return g;
+        };
+        auto gap_at = [&](const IslandState& s) {
+          return gap_with([&](int k, BodyState& o) { o = s[k]; });
+        };
+        auto gap_on_curve = [&](double t) {
+          const Hermite hc = hermite(t);
+          return gap_with([&](int k, BodyState& o) {
+            o = curve_from[k];
+            curve_state(hc, k, o);
+          });
         };
         double lo = t_a, hi = t_b;
         double g_lo = INFINITY, g_hi = INFINITY;
@@ -1262,10 +1280,10 @@ void World::advance_island(const Island& island, double h) {
           if (!curve) return locate_impact(lo, hi, g_lo, g_hi, toi, noise, at_lo, lo_info,
                                            advanced, gap_at, true);
           const double t_lo = lo, span = hi - lo;
-          const double e_lo = gap_at(at_lo) - gap_at(interpolated(lo));
-          const double e_hi = g_hi - gap_at(interpolated(hi));
+          const double e_lo = gap_at(at_lo) - gap_on_curve(lo);
+          const double e_hi = g_hi - gap_on_curve(hi);
           auto corrected = [&](double t) {
-            return gap_at(interpolated(t)) + e_lo + (e_hi - e_lo) * (t - t_lo) / span;
+            return gap_on_curve(t) + e_lo + (e_hi - e_lo) * (t - t_lo) / span;
           };
           double clo = lo, on_curve = lo;
           int unused = 0;
@@ -1339,6 +1357,7 @@ void World::advance_island(const Island& island, double h) {
     // (project_held_apart); sweeping the pass again converged as 0.99 a sweep under a 50:1
     // mass ratio. The penetration counted is what the stretch left, before any move; the gain,
     // that of every move.
+    // `posed`: `state` normalised, moved with it (a move changes positions only).
     IslandState posed = held.empty() ? IslandState{} : normalized(state, def_.rotation);
     double correction_gain = 0.0;
     auto move = [&](const Side& side, const Vec3& by) {
@@ -1348,7 +1367,7 @@ void World::advance_island(const Island& island, double h) {
       correction_gain -= view.member(side.index).mass() * def_.gravity.dot(by);
     };
     auto held_depth = [&](const IslandContact& c) {
-      return std::min(-separation_of(c, state),
+      return std::min(-separation_of(c, posed),
                       -pair_separation(static_cast<std::size_t>(c.pair), posed));
     };
     for (const IslandContact& c : held) {
