@@ -199,10 +199,17 @@ EdgeQuery query_edges(const RigidBody& a, const Pose& pa, const WorldVertices& w
                                  a.bounding_radius() + b.bounding_radius());
   const auto& da = a.edge_directions();
   const auto& db = b.edge_directions();
+  // b's edge directions in the world, once where they are few (a box's three), not once per
+  // edge of a.
+  constexpr std::size_t kFew = 8;
+  std::array<Vec3, kFew> eb_few;
+  const bool few = db.size() <= kFew;
+  if (few)
+    for (std::size_t j = 0; j < db.size(); ++j) eb_few[j] = pb.R * db[j];
   for (std::size_t i = 0; i < da.size(); ++i) {
     const Vec3 ea = pa.R * da[i];
     for (std::size_t j = 0; j < db.size(); ++j) {
-      Vec3 axis = ea.cross(pb.R * db[j]);
+      Vec3 axis = ea.cross(few ? eb_few[j] : Vec3(pb.R * db[j]));
       const double length = axis.norm();
       // Edges parallel within 1e-6 rad: their cross product is a face normal's business.
       if (length < 1e-6) continue;
