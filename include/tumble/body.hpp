@@ -141,6 +141,8 @@ class RigidBody {
   Vec3 angular_velocity() const { return inverse_inertia_world() * state.L; }
   /// Kinetic (linear + rotational) plus gravitational potential energy, zero at x = 0.
   double energy(const Vec3& gravity) const;
+  /// The same, given the angular velocity (angular_velocity(), already computed).
+  double energy(const Vec3& gravity, const Vec3& omega) const;
 
  private:
   std::string name_;

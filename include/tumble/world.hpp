@@ -222,7 +222,9 @@ class World {
   // The world goes on from a step's state: its controller, statistics and diagnostics count.
   void keep_step(std::size_t body, const StepInfo& info);
   // After a body's step: a non-finite state ends the run (exit 2); spin against dt is checked.
-  void check_finite(std::size_t body) const;
+  /// Throws where the body's state or what derives from it is not finite; returns its angular
+  /// velocity, computed on the way (zero for a particle).
+  Vec3 check_finite(std::size_t body) const;
   void check_state(std::size_t body);
   void check_free_flight(std::size_t body, bool contact);
   void record_impact(std::size_t body, double t_s, double approach_speed_mps);

@@ -172,8 +172,13 @@ bool same_pose(const BodyState& a, const BodyState& b) {
 
 double RigidBody::energy(const Vec3& gravity) const {
   if (fixed_) return 0.0;  // it never moves: its energy is no part of the run's
+  return energy(gravity, particle_ ? Vec3(Vec3::Zero()) : angular_velocity());
+}
+
+double RigidBody::energy(const Vec3& gravity, const Vec3& omega) const {
+  if (fixed_) return 0.0;
   const double linear = 0.5 * state.P.squaredNorm() * inverse_mass_;
-  const double rotational = particle_ ? 0.0 : 0.5 * angular_velocity().dot(state.L);
+  const double rotational = particle_ ? 0.0 : 0.5 * omega.dot(state.L);
   return linear + rotational - mass_ * gravity.dot(state.x);
 }
 
